@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages vdcloth needs to build, test and run.
+# Idempotent: when every package is present it returns without touching apt.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev          # dense and sparse linear algebra
+  libsuitesparse-dev     # CHOLMOD sparse Cholesky
+  nlohmann-json3-dev     # scene and material files
+  libgtest-dev libgmock-dev googletest
+  libbenchmark-dev       # bench/
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,105 @@
+// Per-element attribute arrays that grow with the mesh and follow compaction (geometry-central style).
+#pragma once
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/handles.hpp"
+
+namespace vdc {
+
+class AttributeBase {
+ public:
+  virtual ~AttributeBase() = default;
+  virtual void resize(std::size_t n) = 0;
+  // Keep element new_to_old[i] at position i, drop the rest.
+  virtual void permute(const std::vector<int32_t>& new_to_old) = 0;
+  virtual std::unique_ptr<AttributeBase> clone() const = 0;
+};
+
+template <class Tag, class T>
+class Attribute final : public AttributeBase {
+ public:
+  explicit Attribute(T default_value) : default_(std::move(default_value)) {}
+  T& operator[](Handle<Tag> h) { return data_[static_cast<std::size_t>(h.idx)]; }
+  const T& operator[](Handle<Tag> h) const { return data_[static_cast<std::size_t>(h.idx)]; }
+  std::size_t size() const { return data_.size(); }
+  const T& default_value() const { return default_; }
+  std::vector<T>& raw() { return data_; }
+  const std::vector<T>& raw() const { return data_; }
+
+  void resize(std::size_t n) override { data_.resize(n, default_); }
+  void permute(const std::vector<int32_t>& new_to_old) override {
+    std::vector<T> out;
+    out.reserve(new_to_old.size());
+    for (int32_t old : new_to_old) out.push_back(data_[static_cast<std::size_t>(old)]);
+    data_ = std::move(out);
+  }
+  std::unique_ptr<AttributeBase> clone() const override { return std::make_unique<Attribute>(*this); }
+
+ private:
+  T default_;
+  std::vector<T> data_;
+};
+
+// The named attributes of one element kind. Owned by the mesh, which resizes and permutes them.
+template <class Tag>
+class AttributeSet {
+ public:
+  AttributeSet() = default;
+  AttributeSet(const AttributeSet& other) : size_(other.size_) {
+    for (const auto& [name, a] : other.attrs_) attrs_.emplace(name, a->clone());
+  }
+  AttributeSet& operator=(const AttributeSet& other) {
+    if (this != &other) *this = AttributeSet(other);
+    return *this;
+  }
+  AttributeSet(AttributeSet&&) noexcept = default;
+  AttributeSet& operator=(AttributeSet&&) noexcept = default;
+
+  template <class T>
+  Attribute<Tag, T>& add(const std::string& name, T default_value) {
+    if (attrs_.count(name)) throw std::logic_error("attribute '" + name + "' already exists");
+    auto a = std::make_unique<Attribute<Tag, T>>(std::move(default_value));
+    a->resize(size_);
+    auto& ref = *a;
+    attrs_.emplace(name, std::move(a));
+    return ref;
+  }
+  template <class T>
+  Attribute<Tag, T>& get(const std::string& name) {
+    auto it = attrs_.find(name);
+    if (it == attrs_.end()) throw std::logic_error("no attribute '" + name + "'");
+    auto* a = dynamic_cast<Attribute<Tag, T>*>(it->second.get());
+    if (!a) throw std::logic_error("attribute '" + name + "' has another type");
+    return *a;
+  }
+  template <class T>
+  const Attribute<Tag, T>& get(const std::string& name) const {
+    return const_cast<AttributeSet*>(this)->get<T>(name);
+  }
+  template <class T>
+  Attribute<Tag, T>& get_or_add(const std::string& name, T default_value) {
+    return has(name) ? get<T>(name) : add<T>(name, std::move(default_value));
+  }
+  bool has(const std::string& name) const { return attrs_.count(name) > 0; }
+  void remove(const std::string& name) { attrs_.erase(name); }
+
+  std::size_t size() const { return size_; }
+  void resize(std::size_t n) {
+    size_ = n;
+    for (auto& [name, a] : attrs_) a->resize(n);
+  }
+  void permute(const std::vector<int32_t>& new_to_old) {
+    size_ = new_to_old.size();
+    for (auto& [name, a] : attrs_) a->permute(new_to_old);
+  }
+
+ private:
+  std::size_t size_ = 0;
+  std::map<std::string, std::unique_ptr<AttributeBase>> attrs_;
+};
+
+}  // namespace vdc

@@ -1,0 +1,38 @@
+// Typed errors. InputError: bad user input (exit status 2). SimulationError: unrecoverable (exit 3).
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace vdc {
+
+// Something the user gave us is wrong: names the file, the place in it and the problem.
+class InputError : public std::runtime_error {
+ public:
+  InputError(const std::string& file, const std::string& place, const std::string& problem)
+      : std::runtime_error(compose(file, place, problem)), file_(file), place_(place), problem_(problem) {}
+  const std::string& file() const { return file_; }
+  const std::string& place() const { return place_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  static std::string compose(const std::string& file, const std::string& place, const std::string& problem) {
+    std::string s = file;
+    if (!place.empty()) s += (s.empty() ? "" : ":") + place;
+    return s.empty() ? problem : s + ": " + problem;
+  }
+  std::string file_, place_, problem_;
+};
+
+// A mesh topology request that would break an invariant (non-manifold edge, flipped orientation...).
+class TopologyError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The simulation could not go on even after its fallbacks.
+class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace vdc

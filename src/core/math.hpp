@@ -1,0 +1,27 @@
+// Small fixed-size linear algebra types shared by every module (Eigen underneath).
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Dense>
+
+namespace vdc {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Mat2 = Eigen::Matrix2d;
+using Mat3 = Eigen::Matrix3d;
+using Mat32 = Eigen::Matrix<double, 3, 2>;
+using Mat23 = Eigen::Matrix<double, 2, 3>;
+template <int N>
+using VecN = Eigen::Matrix<double, N, 1>;
+template <int N>
+using MatN = Eigen::Matrix<double, N, N>;
+
+// Twice the signed area of the 2D triangle (a, b, c); positive when counter-clockwise.
+inline double signed_area2(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+}
+
+// Unnormalized normal (twice the area times the unit normal) of the 3D triangle (a, b, c).
+inline Vec3 area_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return (b - a).cross(c - a); }
+
+}  // namespace vdc

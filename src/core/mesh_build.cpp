@@ -1,0 +1,163 @@
+#include "core/mesh_build.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <string>
+
+namespace vdc {
+
+namespace {
+
+std::string corner_list(const std::array<Corner, 3>& f) {
+  return std::to_string(f[0].node) + ", " + std::to_string(f[1].node) + ", " + std::to_string(f[2].node);
+}
+
+// Relative area below which a triangle counts as degenerate: area < kDegenerate * (longest edge)^2.
+constexpr double kDegenerate = 1e-10;
+
+template <class V>
+bool degenerate(double area, const V& a, const V& b, const V& c) {
+  double l2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+  return !(std::abs(area) > kDegenerate * l2) || l2 == 0;
+}
+
+int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
+  while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+  return i;
+}
+
+// A vertex is manifold when its faces form one fan (connected through the edges at the node).
+void check_vertex_fans(const Mesh& mesh, const std::vector<int32_t>& first_face_of_node) {
+  for (NodeId n : mesh.nodes()) {
+    std::vector<FaceId> faces;
+    for (VertId v : mesh.node_verts(n))
+      for (FaceId f : mesh.vert_faces(v)) faces.push_back(f);
+    std::map<int32_t, int32_t> local;
+    for (FaceId f : faces) local.emplace(f.idx, static_cast<int32_t>(local.size()));
+    std::vector<int32_t> parent(local.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    for (EdgeId e : mesh.node_edges(n)) {
+      FaceId a = mesh.edge_face(e, 0), b = mesh.edge_face(e, 1);
+      if (a.valid() && b.valid()) parent[static_cast<std::size_t>(find_root(parent, local[a.idx]))] = find_root(parent, local[b.idx]);
+    }
+    int32_t roots = 0;
+    for (std::size_t i = 0; i < parent.size(); ++i) roots += find_root(parent, static_cast<int32_t>(i)) == static_cast<int32_t>(i);
+    if (roots > 1)
+      throw MeshBuildError(first_face_of_node[static_cast<std::size_t>(n.idx)],
+                           "non-manifold vertex: the faces around node " + std::to_string(n.idx) +
+                               " form " + std::to_string(roots) + " separate fans");
+  }
+}
+
+}  // namespace
+
+Mesh build_mesh(const MeshSource& src) {
+  const auto np = static_cast<int32_t>(src.positions.size());
+  const auto nu = static_cast<int32_t>(src.uvs.size());
+  std::vector<char> used(src.positions.size(), 0);
+  for (std::size_t fi = 0; fi < src.faces.size(); ++fi) {
+    for (const Corner& c : src.faces[fi]) {
+      if (c.node < 0 || c.node >= np)
+        throw MeshBuildError(static_cast<int32_t>(fi), "position index " + std::to_string(c.node + 1) + " out of range");
+      if (c.uv < 0 || c.uv >= nu)
+        throw MeshBuildError(static_cast<int32_t>(fi), "texture (material) index " + std::to_string(c.uv + 1) + " out of range");
+      used[static_cast<std::size_t>(c.node)] = 1;
+    }
+  }
+  Mesh mesh;
+  std::vector<NodeId> node_of(src.positions.size());
+  std::vector<int32_t> first_face_of_node;
+  for (std::size_t i = 0; i < src.positions.size(); ++i) {
+    if (!used[i]) continue;
+    if (!src.positions[i].allFinite()) throw MeshBuildError(-1, "position " + std::to_string(i + 1) + " is not finite");
+    node_of[i] = mesh.add_node(src.positions[i]);
+    first_face_of_node.push_back(-1);
+  }
+  std::map<std::pair<int32_t, int32_t>, VertId> vert_of;
+  for (std::size_t fi = 0; fi < src.faces.size(); ++fi) {
+    const auto& f = src.faces[fi];
+    const auto face_index = static_cast<int32_t>(fi);
+    if (f[0].node == f[1].node || f[1].node == f[2].node || f[0].node == f[2].node)
+      throw MeshBuildError(face_index, "degenerate face: it repeats a position (" + corner_list(f) + ")");
+    const Vec3 &x0 = src.positions[static_cast<std::size_t>(f[0].node)], &x1 = src.positions[static_cast<std::size_t>(f[1].node)],
+               &x2 = src.positions[static_cast<std::size_t>(f[2].node)];
+    const Vec2 &u0 = src.uvs[static_cast<std::size_t>(f[0].uv)], &u1 = src.uvs[static_cast<std::size_t>(f[1].uv)],
+               &u2 = src.uvs[static_cast<std::size_t>(f[2].uv)];
+    if (!u0.allFinite() || !u1.allFinite() || !u2.allFinite())
+      throw MeshBuildError(face_index, "material-space coordinate is not finite");
+    double ua = 0.5 * signed_area2(u0, u1, u2);
+    if (degenerate(ua, u0, u1, u2)) throw MeshBuildError(face_index, "degenerate face: zero area in material space (vt)");
+    if (ua < 0)
+      throw MeshBuildError(face_index, "face is clockwise in material space (vt); faces must be counter-clockwise");
+    double xa = 0.5 * area_normal(x0, x1, x2).norm();
+    if (degenerate(xa, x0, x1, x2)) throw MeshBuildError(face_index, "degenerate face: zero area in world space (v)");
+    std::array<VertId, 3> vs;
+    for (int k = 0; k < 3; ++k) {
+      const Corner& c = f[static_cast<std::size_t>(k)];
+      auto key = std::make_pair(c.node, c.uv);
+      auto it = vert_of.find(key);
+      if (it == vert_of.end()) it = vert_of.emplace(key, mesh.add_vert(node_of[static_cast<std::size_t>(c.node)], src.uvs[static_cast<std::size_t>(c.uv)])).first;
+      vs[static_cast<std::size_t>(k)] = it->second;
+      auto& first = first_face_of_node[static_cast<std::size_t>(node_of[static_cast<std::size_t>(c.node)].idx)];
+      if (first < 0) first = face_index;
+    }
+    try {
+      mesh.add_face(vs[0], vs[1], vs[2]);
+    } catch (const TopologyError& e) {
+      throw MeshBuildError(face_index, e.what());
+    }
+  }
+  check_vertex_fans(mesh, first_face_of_node);
+  return mesh;
+}
+
+MeshSource mesh_source(const Mesh& mesh) {
+  MeshSource src;
+  std::vector<int32_t> node_index(static_cast<std::size_t>(mesh.node_capacity()), -1);
+  std::vector<int32_t> vert_index(static_cast<std::size_t>(mesh.vert_capacity()), -1);
+  for (NodeId n : mesh.nodes()) {
+    node_index[static_cast<std::size_t>(n.idx)] = static_cast<int32_t>(src.positions.size());
+    src.positions.push_back(mesh.x(n));
+  }
+  for (VertId v : mesh.verts()) {
+    vert_index[static_cast<std::size_t>(v.idx)] = static_cast<int32_t>(src.uvs.size());
+    src.uvs.push_back(mesh.u(v));
+  }
+  for (FaceId f : mesh.faces()) {
+    std::array<Corner, 3> c;
+    for (int k = 0; k < 3; ++k) {
+      VertId v = mesh.face_vert(f, k);
+      c[static_cast<std::size_t>(k)] = {node_index[static_cast<std::size_t>(mesh.vert_node(v).idx)], vert_index[static_cast<std::size_t>(v.idx)]};
+    }
+    src.faces.push_back(c);
+  }
+  return src;
+}
+
+MeshSource make_grid(double size_x, double size_y, int nx, int ny) {
+  MeshSource src;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      Vec2 u(size_x * i / nx, size_y * j / ny);
+      src.uvs.push_back(u);
+      src.positions.emplace_back(u.x(), 0.0, -u.y());
+    }
+  auto id = [nx](int i, int j) { return j * (nx + 1) + i; };
+  auto corner = [](int32_t k) { return Corner{k, k}; };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      int32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2 == 0) {
+        src.faces.push_back({corner(a), corner(b), corner(c)});
+        src.faces.push_back({corner(a), corner(c), corner(d)});
+      } else {
+        src.faces.push_back({corner(a), corner(b), corner(d)});
+        src.faces.push_back({corner(b), corner(c), corner(d)});
+      }
+    }
+  return src;
+}
+
+}  // namespace vdc

@@ -1,0 +1,43 @@
+// Builds a Mesh from indexed arrays (what an OBJ file holds) and checks that it is a valid garment:
+// manifold edges and vertices, consistent orientation, no degenerate face in either space.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/mesh.hpp"
+
+namespace vdc {
+
+struct Corner {
+  int32_t node;  // index into positions
+  int32_t uv;    // index into uvs
+  friend bool operator==(const Corner&, const Corner&) = default;
+};
+
+struct MeshSource {
+  std::vector<Vec3> positions;  // world space
+  std::vector<Vec2> uvs;        // material space, metres
+  std::vector<std::array<Corner, 3>> faces;
+};
+
+// Raised by build_mesh for a face it cannot accept; `face` indexes MeshSource::faces.
+class MeshBuildError : public TopologyError {
+ public:
+  MeshBuildError(int32_t face_index, const std::string& what) : TopologyError(what), face(face_index) {}
+  int32_t face;
+};
+
+// Positions that no face uses are dropped. A vert is a distinct (node, uv) pair, in order of first
+// use; nodes keep the order of `positions`.
+Mesh build_mesh(const MeshSource& src);
+
+// The arrays of a mesh, in its own order (compact meshes give back exactly what built them).
+MeshSource mesh_source(const Mesh& mesh);
+
+// A size_x by size_y metre sheet split into nx by ny cells of two triangles each (diagonals
+// alternate to avoid a directional bias). Material space is (x, y) in [0, size]; world space is
+// (u, 0, -v), so the outer side faces +y.
+MeshSource make_grid(double size_x, double size_y, int nx, int ny);
+
+}  // namespace vdc

@@ -1,0 +1,125 @@
+#include "io/obj.hpp"
+
+#include <charconv>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace vdc {
+
+namespace {
+
+std::string line_place(int line) { return "line " + std::to_string(line); }
+
+double parse_number(const std::string& tok, const std::string& path, int line) {
+  double value = 0;
+  auto res = std::from_chars(tok.data(), tok.data() + tok.size(), value);
+  if (res.ec != std::errc() || res.ptr != tok.data() + tok.size() || !std::isfinite(value))
+    throw InputError(path, line_place(line), "expected a number, found '" + tok + "'");
+  return value;
+}
+
+// OBJ indices are 1-based; negative ones count back from the last element read so far.
+int32_t parse_index(const std::string& tok, std::size_t count, const std::string& what, const std::string& path, int line) {
+  long long value = 0;
+  auto res = std::from_chars(tok.data(), tok.data() + tok.size(), value);
+  if (res.ec != std::errc() || res.ptr != tok.data() + tok.size() || value == 0)
+    throw InputError(path, line_place(line), "bad " + what + " index '" + tok + "'");
+  long long idx = value > 0 ? value - 1 : static_cast<long long>(count) + value;
+  if (idx < 0 || idx >= static_cast<long long>(count))
+    throw InputError(path, line_place(line), what + " index " + tok + " out of range (" + std::to_string(count) + " defined so far)");
+  return static_cast<int32_t>(idx);
+}
+
+}  // namespace
+
+MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector<int>* face_lines) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open file");
+  MeshSource src;
+  std::vector<int> lines;
+  std::string raw;
+  int line = 0;
+  bool any_uv_missing = false;
+  while (std::getline(in, raw)) {
+    ++line;
+    if (auto hash = raw.find('#'); hash != std::string::npos) raw.resize(hash);
+    std::istringstream ss(raw);
+    std::string tag;
+    if (!(ss >> tag)) continue;
+    std::vector<std::string> toks;
+    for (std::string t; ss >> t;) toks.push_back(t);
+    if (tag == "v") {
+      if (toks.size() < 3) throw InputError(path, line_place(line), "'v' needs 3 coordinates");
+      src.positions.emplace_back(parse_number(toks[0], path, line), parse_number(toks[1], path, line), parse_number(toks[2], path, line));
+    } else if (tag == "vt") {
+      if (toks.size() < 2) throw InputError(path, line_place(line), "'vt' needs 2 coordinates");
+      src.uvs.emplace_back(parse_number(toks[0], path, line), parse_number(toks[1], path, line));
+    } else if (tag == "f") {
+      if (toks.size() < 3) throw InputError(path, line_place(line), "a face needs at least 3 corners");
+      std::vector<Corner> corners;
+      for (const auto& t : toks) {
+        auto slash = t.find('/');
+        Corner c{parse_index(t.substr(0, slash), src.positions.size(), "position", path, line), -1};
+        if (slash != std::string::npos) {
+          auto rest = t.substr(slash + 1);
+          auto slash2 = rest.find('/');
+          auto uvtok = rest.substr(0, slash2);
+          if (!uvtok.empty()) c.uv = parse_index(uvtok, src.uvs.size(), "texture", path, line);
+        }
+        if (c.uv < 0) {
+          if (require_uv) throw InputError(path, line_place(line), "face corner '" + t + "' has no material-space (vt) index");
+          any_uv_missing = true;
+        }
+        corners.push_back(c);
+      }
+      // Polygons are split into a fan of triangles.
+      for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+        src.faces.push_back({corners[0], corners[k], corners[k + 1]});
+        lines.push_back(line);
+      }
+    }
+    // Other statements (vn, o, g, s, usemtl, mtllib, l, p) carry nothing a garment needs.
+  }
+  if (in.bad()) throw InputError(path, "", "read error");
+  if (src.faces.empty()) throw InputError(path, "", "no faces");
+  if (any_uv_missing) {
+    // Obstacles without vt: each corner takes its position's world (x, -z) as material coordinates.
+    src.uvs.clear();
+    for (const Vec3& p : src.positions) src.uvs.emplace_back(p.x(), -p.z());
+    for (auto& f : src.faces)
+      for (auto& c : f) c.uv = c.node;
+  }
+  if (face_lines) *face_lines = std::move(lines);
+  return src;
+}
+
+Mesh read_obj(const std::string& path, bool require_uv) {
+  std::vector<int> lines;
+  MeshSource src = read_obj_source(path, require_uv, &lines);
+  try {
+    return build_mesh(src);
+  } catch (const MeshBuildError& e) {
+    std::string place = e.face >= 0 ? line_place(lines[static_cast<std::size_t>(e.face)]) : "";
+    throw InputError(path, place, e.what());
+  }
+}
+
+bool write_obj(const Mesh& mesh, const std::string& path) {
+  MeshSource src = mesh_source(mesh);
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) return false;
+  std::fprintf(f, "# vdcloth mesh: v world position, vt material position (m)\n");
+  for (const Vec3& p : src.positions) std::fprintf(f, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+  for (const Vec2& u : src.uvs) std::fprintf(f, "vt %.17g %.17g\n", u.x(), u.y());
+  for (const auto& face : src.faces)
+    std::fprintf(f, "f %d/%d %d/%d %d/%d\n", face[0].node + 1, face[0].uv + 1, face[1].node + 1, face[1].uv + 1,
+                 face[2].node + 1, face[2].uv + 1);
+  bool ok = std::ferror(f) == 0;
+  return std::fclose(f) == 0 && ok;
+}
+
+}  // namespace vdc

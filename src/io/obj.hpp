@@ -1,0 +1,22 @@
+// Wavefront OBJ for garments: `v` world position, `vt` material-space position in metres, `f v/vt`.
+// A position used with several `vt` is a seam.
+#pragma once
+#include <string>
+
+#include "core/mesh.hpp"
+#include "core/mesh_build.hpp"
+
+namespace vdc {
+
+// Reads the arrays of an OBJ file. Throws InputError naming the file and line.
+// When `require_uv` is false, faces without `vt` get their world (x, z) as material coordinates,
+// which is what obstacles need; garments must have `vt`.
+MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector<int>* face_lines = nullptr);
+
+// Reads and validates a garment mesh. Throws InputError naming the file, the line and the problem.
+Mesh read_obj(const std::string& path, bool require_uv = true);
+
+// Writes v, vt and f v/vt so that read_obj gives back the same mesh. Returns false on I/O failure.
+bool write_obj(const Mesh& mesh, const std::string& path);
+
+}  // namespace vdc
