@@ -1,0 +1,203 @@
+// Backward-Euler system assembly (Baraff and Witkin 1998, eq. 18), gathered in parallel.
+#include "physics/assembly.hpp"
+
+#include <algorithm>
+
+namespace vdc {
+
+namespace {
+
+constexpr int64_t kFaceMat = 81, kBendMat = 144, kFaceVec = 9, kBendVec = 12;
+
+template <int N>
+std::array<Vec3, N / 3> gather_positions(const Eigen::VectorXd& x, const std::array<int32_t, N / 3>& nodes) {
+  std::array<Vec3, N / 3> out;
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = x.segment<3>(3 * nodes[i]);
+  return out;
+}
+
+template <int N>
+VecN<N> gather(const Eigen::VectorXd& v, const std::array<int32_t, N / 3>& nodes) {
+  VecN<N> out;
+  for (std::size_t i = 0; i < nodes.size(); ++i) out.template segment<3>(3 * static_cast<int>(i)) = v.segment<3>(3 * nodes[i]);
+  return out;
+}
+
+}  // namespace
+
+SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
+  const int32_t n = model.num_nodes;
+  neighbours_.assign(static_cast<std::size_t>(n), {});
+  for (int32_t i = 0; i < n; ++i) neighbours_[static_cast<std::size_t>(i)].push_back(i);
+  auto link = [&](const auto& nodes) {
+    for (int32_t a : nodes)
+      for (int32_t b : nodes)
+        if (a != b) neighbours_[static_cast<std::size_t>(a)].push_back(b);
+  };
+  for (const auto& f : model.face_nodes) link(f);
+  for (const auto& b : model.bend_nodes) link(b);
+  slot_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (int32_t i = 0; i < n; ++i) {
+    auto& nb = neighbours_[static_cast<std::size_t>(i)];
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    slot_start_[static_cast<std::size_t>(i) + 1] = slot_start_[static_cast<std::size_t>(i)] + static_cast<int32_t>(nb.size());
+  }
+  const int32_t slots = slot_start_.back();
+
+  // Matrix pattern: scalar column 3j+c holds rows 3i+r for each neighbour i of j.
+  const int64_t dim = 3 * static_cast<int64_t>(n);
+  a_.resize(dim, dim);
+  a_.resizeNonZeros(9 * static_cast<int64_t>(slots));
+  auto* outer = a_.outerIndexPtr();
+  auto* inner = a_.innerIndexPtr();
+  int64_t pos = 0;
+  for (int32_t j = 0; j < n; ++j)
+    for (int c = 0; c < 3; ++c) {
+      outer[3 * j + c] = static_cast<int>(pos);
+      for (int32_t i : neighbours_[static_cast<std::size_t>(j)])
+        for (int r = 0; r < 3; ++r) inner[pos++] = 3 * i + r;
+    }
+  outer[dim] = static_cast<int>(pos);
+  std::fill(a_.valuePtr(), a_.valuePtr() + pos, 0.0);
+  b_.setZero(dim);
+
+  // Gather lists: which element blocks and vectors land in each slot and node.
+  const auto nf = static_cast<int64_t>(model.face_nodes.size());
+  const auto ne = static_cast<int64_t>(model.bend_nodes.size());
+  matrix_buffer_.assign(static_cast<std::size_t>(nf * kFaceMat + ne * kBendMat), 0.0);
+  rhs_buffer_.assign(static_cast<std::size_t>(nf * kFaceVec + ne * kBendVec), 0.0);
+  std::vector<std::pair<int32_t, Contribution>> contrib;
+  std::vector<std::pair<int32_t, int64_t>> parts;
+  auto add_element = [&](const auto& nodes, int64_t mat_offset, int64_t vec_offset, int32_t ld) {
+    const int k = static_cast<int>(nodes.size());
+    for (int a = 0; a < k; ++a) {
+      parts.emplace_back(nodes[static_cast<std::size_t>(a)], vec_offset + 3 * a);
+      for (int b = 0; b < k; ++b)
+        contrib.emplace_back(slot_of(nodes[static_cast<std::size_t>(a)], nodes[static_cast<std::size_t>(b)]),
+                             Contribution{mat_offset + static_cast<int64_t>(3 * b) * ld + 3 * a, ld});
+    }
+  };
+  for (int64_t f = 0; f < nf; ++f) add_element(model.face_nodes[static_cast<std::size_t>(f)], f * kFaceMat, f * kFaceVec, 9);
+  for (int64_t e = 0; e < ne; ++e)
+    add_element(model.bend_nodes[static_cast<std::size_t>(e)], nf * kFaceMat + e * kBendMat, nf * kFaceVec + e * kBendVec, 12);
+  std::stable_sort(contrib.begin(), contrib.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+  std::stable_sort(parts.begin(), parts.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+  slot_contrib_start_.assign(static_cast<std::size_t>(slots) + 1, 0);
+  for (const auto& [s, c] : contrib) ++slot_contrib_start_[static_cast<std::size_t>(s) + 1];
+  for (int32_t s = 0; s < slots; ++s) slot_contrib_start_[static_cast<std::size_t>(s) + 1] += slot_contrib_start_[static_cast<std::size_t>(s)];
+  contributions_.reserve(contrib.size());
+  for (const auto& [s, c] : contrib) contributions_.push_back(c);
+  node_force_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (const auto& [node, off] : parts) ++node_force_start_[static_cast<std::size_t>(node) + 1];
+  for (int32_t i = 0; i < n; ++i) node_force_start_[static_cast<std::size_t>(i) + 1] += node_force_start_[static_cast<std::size_t>(i)];
+  force_parts_.reserve(parts.size());
+  for (const auto& [node, off] : parts) force_parts_.push_back(off);
+}
+
+int32_t SystemAssembler::slot_of(int32_t row_node, int32_t col_node) const {
+  const auto& nb = neighbours_[static_cast<std::size_t>(col_node)];
+  auto it = std::lower_bound(nb.begin(), nb.end(), row_node);
+  if (it == nb.end() || *it != row_node) return -1;
+  return slot_start_[static_cast<std::size_t>(col_node)] + static_cast<int32_t>(it - nb.begin());
+}
+
+int64_t SystemAssembler::value_index(int32_t i, int32_t j, int r, int c) const {
+  int32_t s = slot_of(i, j);
+  if (s < 0) return -1;
+  int32_t k = s - slot_start_[static_cast<std::size_t>(j)];
+  return a_.outerIndexPtr()[3 * j + c] + 3 * k + r;
+}
+
+void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const StepParams& p) {
+  const double h = p.h, h2 = p.h * p.h;
+  const auto nf = static_cast<int64_t>(model_.face_nodes.size());
+  const auto ne = static_cast<int64_t>(model_.bend_nodes.size());
+  double energy = 0;
+
+#pragma omp parallel num_threads(p.threads) reduction(+ : energy)
+  {
+#pragma omp for schedule(static)
+    for (int64_t f = 0; f < nf; ++f) {
+      const auto& nodes = model_.face_nodes[static_cast<std::size_t>(f)];
+      TriStencil xs = gather_positions<9>(x, nodes);
+      MembraneEval m = membrane_eval(xs, model_.membranes[static_cast<std::size_t>(f)]);
+      energy += m.energy;
+      VecN<9> vl = gather<9>(v, nodes);
+      MatN<9> local = h2 * m.hessian;
+      VecN<9> rhs = -h * m.gradient - h2 * (m.hessian * vl);
+      if (p.drag > 0) {
+        // Air drag on the face normal, linear in the face's mean velocity relative to the wind.
+        Vec3 an = area_normal(xs[0], xs[1], xs[2]);
+        double area = 0.5 * an.norm();
+        if (area > 0) {
+          Vec3 nrm = an / (2 * area);
+          Vec3 vmean = (vl.segment<3>(0) + vl.segment<3>(3) + vl.segment<3>(6)) / 3.0;
+          Vec3 force = -p.drag * area * (vmean - p.wind).dot(nrm) * nrm / 3.0;
+          Mat3 d = (p.drag * area / 9.0) * nrm * nrm.transpose();
+          for (int a = 0; a < 3; ++a) {
+            rhs.segment<3>(3 * a) += h * force;
+            for (int b = 0; b < 3; ++b) local.block<3, 3>(3 * a, 3 * b) += h * d;
+          }
+        }
+      }
+      std::copy(local.data(), local.data() + kFaceMat, matrix_buffer_.data() + f * kFaceMat);
+      std::copy(rhs.data(), rhs.data() + kFaceVec, rhs_buffer_.data() + f * kFaceVec);
+    }
+#pragma omp for schedule(static)
+    for (int64_t e = 0; e < ne; ++e) {
+      const auto& nodes = model_.bend_nodes[static_cast<std::size_t>(e)];
+      BendingEval b = bending_eval(gather_positions<12>(x, nodes), model_.bends[static_cast<std::size_t>(e)]);
+      energy += b.energy;
+      VecN<12> vl = gather<12>(v, nodes);
+      MatN<12> local = h2 * b.hessian;
+      VecN<12> rhs = -h * b.gradient - h2 * (b.hessian * vl);
+      std::copy(local.data(), local.data() + kBendMat, matrix_buffer_.data() + nf * kFaceMat + e * kBendMat);
+      std::copy(rhs.data(), rhs.data() + kBendVec, rhs_buffer_.data() + nf * kFaceVec + e * kBendVec);
+    }
+#pragma omp for schedule(static)
+    for (int32_t j = 0; j < model_.num_nodes; ++j) {
+      const auto& nb = neighbours_[static_cast<std::size_t>(j)];
+      for (std::size_t k = 0; k < nb.size(); ++k) {
+        const int32_t s = slot_start_[static_cast<std::size_t>(j)] + static_cast<int32_t>(k);
+        Mat3 block = Mat3::Zero();
+        for (int32_t q = slot_contrib_start_[static_cast<std::size_t>(s)]; q < slot_contrib_start_[static_cast<std::size_t>(s) + 1]; ++q) {
+          const Contribution& c = contributions_[static_cast<std::size_t>(q)];
+          block += Eigen::Map<const Mat3, 0, Eigen::OuterStride<>>(matrix_buffer_.data() + c.offset, Eigen::OuterStride<>(c.ld));
+        }
+        if (nb[k] == j) block.diagonal().array() += model_.node_mass[static_cast<std::size_t>(j)] * (1.0 + h * p.damping);
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r) a_.valuePtr()[a_.outerIndexPtr()[3 * j + c] + 3 * static_cast<int64_t>(k) + r] = block(r, c);
+      }
+      const double mass = model_.node_mass[static_cast<std::size_t>(j)];
+      Vec3 rhs = h * mass * (p.gravity - p.damping * v.segment<3>(3 * j));
+      for (int32_t q = node_force_start_[static_cast<std::size_t>(j)]; q < node_force_start_[static_cast<std::size_t>(j) + 1]; ++q)
+        rhs += Eigen::Map<const Vec3>(rhs_buffer_.data() + force_parts_[static_cast<std::size_t>(q)]);
+      b_.segment<3>(3 * j) = rhs;
+    }
+  }
+  elastic_energy_ = energy;
+}
+
+void SystemAssembler::constrain(const std::vector<VelocityConstraint>& constraints) {
+  double* val = a_.valuePtr();
+  for (const auto& con : constraints) {
+    const int32_t c = con.node;
+    for (int32_t i : neighbours_[static_cast<std::size_t>(c)]) {
+      for (int cc = 0; cc < 3; ++cc)
+        for (int r = 0; r < 3; ++r) {
+          int64_t below = value_index(i, c, r, cc);  // block (i, c)
+          int64_t right = value_index(c, i, cc, r);  // its mirror (c, i)
+          if (i != c) b_[3 * i + r] -= val[below] * con.dv[cc];
+          val[below] = 0.0;
+          val[right] = 0.0;
+        }
+    }
+    for (int r = 0; r < 3; ++r) {
+      val[value_index(c, c, r, r)] = 1.0;
+      b_[3 * c + r] = con.dv[r];
+    }
+  }
+}
+
+}  // namespace vdc

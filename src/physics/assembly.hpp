@@ -1,0 +1,68 @@
+// Parallel assembly of the backward-Euler system (Baraff and Witkin 1998, eq. 18, one Newton step):
+//   (M + h D + h^2 K) dv = h f - h^2 K v
+// with K the PSD-projected Hessian of the elastic energies, D the damping Jacobian. Elements
+// are evaluated in parallel into their own buffers, then each matrix block and force gathers
+// its contributions, so no two threads write one place and the sum order never changes.
+#pragma once
+#include <utility>
+#include <vector>
+
+#include <Eigen/Sparse>
+
+#include "physics/cloth_model.hpp"
+
+namespace vdc {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, both triangles stored
+
+struct StepParams {
+  double h = 0.005;                     // s
+  Vec3 gravity = Vec3(0, -9.8, 0);      // m/s^2
+  double damping = 0;                   // 1/s: force -damping m v
+  double drag = 0;                      // N s/m^3: face force -drag A ((v - wind).n) n
+  Vec3 wind = Vec3::Zero();             // m/s
+  int threads = 1;
+};
+
+// Velocity change prescribed for a node over the step (handles).
+struct VelocityConstraint {
+  int32_t node;
+  Vec3 dv;
+};
+
+class SystemAssembler {
+ public:
+  explicit SystemAssembler(const ClothModel& model);
+
+  void assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const StepParams& p);
+  // Eliminates constrained nodes: their rows and columns become identity, rhs the prescribed dv.
+  void constrain(const std::vector<VelocityConstraint>& constraints);
+
+  const SparseMatrix& matrix() const { return a_; }
+  const Eigen::VectorXd& rhs() const { return b_; }
+  double elastic_energy() const { return elastic_energy_; }
+  // Position in the matrix value array of entry (3 i + r, 3 j + c), or -1 if not in the pattern.
+  int64_t value_index(int32_t i, int32_t j, int r, int c) const;
+
+ private:
+  struct Contribution {
+    int64_t offset;  // of the local matrix's 3x3 block (a, b), column-major with leading dim ld
+    int32_t ld;
+  };
+  int32_t slot_of(int32_t row_node, int32_t col_node) const;
+
+  const ClothModel& model_;
+  std::vector<std::vector<int32_t>> neighbours_;  // per node, sorted, itself included
+  std::vector<int32_t> slot_start_;               // per node: first block slot of its column
+  std::vector<int32_t> slot_contrib_start_;       // per slot: range in contributions_
+  std::vector<Contribution> contributions_;
+  std::vector<int32_t> node_force_start_;         // per node: range in force_parts_
+  std::vector<int64_t> force_parts_;              // offsets of local 3-vectors in rhs_buffer_
+  std::vector<double> matrix_buffer_;             // per element local matrices
+  std::vector<double> rhs_buffer_;                // per element local rhs
+  SparseMatrix a_;
+  Eigen::VectorXd b_;
+  double elastic_energy_ = 0;
+};
+
+}  // namespace vdc

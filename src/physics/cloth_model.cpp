@@ -1,0 +1,56 @@
+#include "physics/cloth_model.hpp"
+
+#include <stdexcept>
+
+namespace vdc {
+
+namespace {
+
+BendStencil stencil(const Mesh& mesh, EdgeId e) {
+  return {mesh.x(mesh.edge_node(e, 0)), mesh.x(mesh.edge_node(e, 1)), mesh.x(mesh.opposite_node(e, 0)),
+          mesh.x(mesh.opposite_node(e, 1))};
+}
+
+}  // namespace
+
+int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& material) {
+  if (!mesh.is_compact()) throw std::logic_error("append_garment needs a compact mesh");
+  const int32_t offset = model.num_nodes;
+  model.num_nodes += mesh.num_nodes();
+  model.node_mass.resize(static_cast<std::size_t>(model.num_nodes), 0.0);
+  const MembraneStiffness k = material.membrane();
+  for (FaceId f : mesh.faces()) {
+    const auto& vs = mesh.face_verts(f);
+    MembraneElement m = make_membrane_element(mesh.u(vs[0]), mesh.u(vs[1]), mesh.u(vs[2]), k);
+    std::array<int32_t, 3> nodes{};
+    for (int i = 0; i < 3; ++i) {
+      nodes[static_cast<std::size_t>(i)] = offset + mesh.face_node(f, i).idx;
+      model.node_mass[static_cast<std::size_t>(nodes[static_cast<std::size_t>(i)])] += material.density * m.area / 3.0;
+    }
+    model.face_nodes.push_back(nodes);
+    model.membranes.push_back(m);
+  }
+  const Attribute<EdgeTag, double>* rest =
+      mesh.edge_attrs().has(kRestAngleAttr) ? &mesh.edge_attrs().get<double>(kRestAngleAttr) : nullptr;
+  for (EdgeId e : mesh.edges()) {
+    if (mesh.is_boundary(e)) continue;
+    // On a seam the two sides may differ in rest length: use their mean.
+    double len = 0.5 * ((mesh.u(mesh.edge_vert(e, 0, 1)) - mesh.u(mesh.edge_vert(e, 0, 0))).norm() +
+                        (mesh.u(mesh.edge_vert(e, 1, 1)) - mesh.u(mesh.edge_vert(e, 1, 0))).norm());
+    BendingElement b;
+    b.coeff = bending_coefficient(material.bending, len, mesh.material_area(mesh.edge_face(e, 0)),
+                                  mesh.material_area(mesh.edge_face(e, 1)));
+    b.theta0 = rest ? (*rest)[e] : 0.0;
+    model.bend_nodes.push_back({offset + mesh.edge_node(e, 0).idx, offset + mesh.edge_node(e, 1).idx,
+                                offset + mesh.opposite_node(e, 0).idx, offset + mesh.opposite_node(e, 1).idx});
+    model.bends.push_back(b);
+  }
+  return offset;
+}
+
+void set_rest_angles_from_world(Mesh& mesh) {
+  auto& rest = mesh.edge_attrs().get_or_add<double>(kRestAngleAttr, 0.0);
+  for (EdgeId e : mesh.edges()) rest[e] = mesh.is_boundary(e) ? 0.0 : dihedral_angle(stencil(mesh, e));
+}
+
+}  // namespace vdc

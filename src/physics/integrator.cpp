@@ -1,0 +1,55 @@
+// Backward Euler, one Newton step (Baraff and Witkin 1998, eq. 18).
+#include "physics/integrator.hpp"
+
+#include <chrono>
+
+namespace vdc {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+ImplicitIntegrator::ImplicitIntegrator(const ClothModel& model, LinearSolverKind kind, const LinearSolverParams& params)
+    : assembler_(model), solver_(make_linear_solver(kind, params)) {
+  solver_->analyze(assembler_.matrix());
+  dv_.setZero(3 * static_cast<int64_t>(model.num_nodes));
+}
+
+StepReport ImplicitIntegrator::step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<VelocityConstraint>& constraints,
+                                    const StepParams& p, double max_dv) {
+  StepReport r;
+  auto t0 = std::chrono::steady_clock::now();
+  assembler_.assemble(x, v, p);
+  assembler_.constrain(constraints);
+  r.assemble_seconds = seconds_since(t0);
+  if (!assembler_.rhs().allFinite()) {
+    r.failure = "non-finite forces";
+    return r;
+  }
+  auto t1 = std::chrono::steady_clock::now();
+  SolveReport s = solver_->solve(assembler_.matrix(), assembler_.rhs(), dv_);
+  r.solve_seconds = seconds_since(t1);
+  r.solver_iterations = s.iterations;
+  if (!s.ok) {
+    r.failure = "linear solver failed (relative residual " + std::to_string(s.residual) + ")";
+    dv_.setZero();
+    return r;
+  }
+  std::vector<char> constrained(static_cast<std::size_t>(x.size() / 3), 0);
+  for (const auto& c : constraints) constrained[static_cast<std::size_t>(c.node)] = 1;
+  for (int64_t i = 0; i < x.size() / 3; ++i)
+    if (!constrained[static_cast<std::size_t>(i)]) r.max_dv = std::max(r.max_dv, dv_.segment<3>(3 * i).norm());
+  if (!(r.max_dv <= max_dv)) {
+    r.failure = "velocity change " + std::to_string(r.max_dv) + " m/s exceeds the limit " + std::to_string(max_dv) + " m/s";
+    dv_.setZero();
+    return r;
+  }
+  v += dv_;
+  x += p.h * v;
+  r.ok = true;
+  return r;
+}
+
+}  // namespace vdc

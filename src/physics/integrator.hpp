@@ -1,0 +1,35 @@
+// Backward Euler with one Newton step per step (Baraff and Witkin 1998, eq. 18): assemble,
+// constrain handles, solve for dv, then v += dv, x += h v.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "physics/assembly.hpp"
+#include "physics/linear_solver.hpp"
+
+namespace vdc {
+
+struct StepReport {
+  bool ok = false;
+  std::string failure;  // why the step was refused, when !ok
+  int solver_iterations = 0;
+  double assemble_seconds = 0, solve_seconds = 0;
+  double max_dv = 0;  // largest velocity change of a free node, m/s
+};
+
+class ImplicitIntegrator {
+ public:
+  ImplicitIntegrator(const ClothModel& model, LinearSolverKind kind, const LinearSolverParams& params = {});
+  // Advances x, v (3n each) by p.h. On failure (non-finite values, solver failure, a velocity
+  // change above max_dv) x and v are left unchanged and the report says why.
+  StepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<VelocityConstraint>& constraints,
+                  const StepParams& p, double max_dv);
+  const SystemAssembler& assembler() const { return assembler_; }
+
+ private:
+  SystemAssembler assembler_;
+  std::unique_ptr<LinearSolver> solver_;
+  Eigen::VectorXd dv_;
+};
+
+}  // namespace vdc

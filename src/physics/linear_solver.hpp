@@ -1,0 +1,39 @@
+// Sparse symmetric positive-definite solvers behind one interface: CHOLMOD supernodal Cholesky,
+// Eigen's simplicial LDL^T, and conjugate gradients with a Jacobi preconditioner.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "physics/assembly.hpp"
+
+namespace vdc {
+
+enum class LinearSolverKind { Cholmod, SimplicialLdlt, ConjugateGradient };
+
+// Parses "cholmod", "ldlt" or "cg"; returns false for anything else.
+bool parse_linear_solver_kind(const std::string& name, LinearSolverKind& kind);
+const char* linear_solver_name(LinearSolverKind kind);
+
+struct SolveReport {
+  bool ok = false;
+  int iterations = 0;  // CG iterations; 1 for direct solvers
+  double residual = 0;  // relative residual |A x - b| / |b|
+};
+
+struct LinearSolverParams {
+  double cg_tolerance = 1e-8;  // relative residual
+  int cg_max_iterations = 2000;
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  // Call once per sparsity pattern (after topology changes); values may be arbitrary.
+  virtual void analyze(const SparseMatrix& a) = 0;
+  // Solves a x = b; x holds the initial guess on entry (used by iterative solvers).
+  virtual SolveReport solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+};
+
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const LinearSolverParams& params = {});
+
+}  // namespace vdc

@@ -1,0 +1,110 @@
+// Orthotropic StVK constant-strain triangle (Narain et al. 2012 section 3; Green strain).
+#include "physics/membrane.hpp"
+
+#include <Eigen/Eigenvalues>
+
+namespace vdc {
+
+namespace {
+
+// F = sum_a x_a g_a^T with g_1, g_2 the rows of Du^-1 and g_0 = -(g_1 + g_2).
+std::array<Vec2, 3> shape_gradients(const MembraneElement& m) {
+  Vec2 g1 = m.du_inv.row(0).transpose(), g2 = m.du_inv.row(1).transpose();
+  return {Vec2(-(g1 + g2)), g1, g2};
+}
+
+double energy_density(const Mat2& e, const MembraneStiffness& k) {
+  double g12 = 2.0 * e(0, 1);
+  return 0.5 * (k.c11 * e(0, 0) * e(0, 0) + 2.0 * k.c12 * e(0, 0) * e(1, 1) + k.c22 * e(1, 1) * e(1, 1) + k.c33 * g12 * g12);
+}
+
+Mat2 clamp_negative(const Mat2& s) {
+  Eigen::SelfAdjointEigenSolver<Mat2> eig;
+  eig.computeDirect(s);
+  Vec2 l = eig.eigenvalues().cwiseMax(0.0);
+  return eig.eigenvectors() * l.asDiagonal() * eig.eigenvectors().transpose();
+}
+
+// Hessian of A psi: for each direction dx = e_k at corner a, dP = dF S_geo + F dS, column
+// entries dP g_b. `s_geo` is the stress used in the geometric term (exact or clamped).
+MatN<9> hessian_with(const Mat32& f, const Mat2& s_geo, const MembraneElement& m) {
+  auto g = shape_gradients(m);
+  MatN<9> h;
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k < 3; ++k) {
+      Mat32 df = Mat32::Zero();
+      df.row(k) = g[static_cast<std::size_t>(a)].transpose();
+      Mat2 de = 0.5 * (f.transpose() * df + df.transpose() * f);
+      Mat32 dp = df * s_geo + f * membrane_stress(de, m.k);
+      for (int b = 0; b < 3; ++b) h.block<3, 1>(3 * b, 3 * a + k) = m.area * dp * g[static_cast<std::size_t>(b)];
+    }
+  return 0.5 * (h + h.transpose());
+}
+
+}  // namespace
+
+MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k) {
+  MembraneElement m;
+  Mat2 du;
+  du.col(0) = u1 - u0;
+  du.col(1) = u2 - u0;
+  m.du_inv = du.inverse();
+  m.area = 0.5 * std::abs(du.determinant());
+  m.k = k;
+  return m;
+}
+
+Mat32 deformation_gradient(const TriStencil& x, const MembraneElement& m) {
+  Mat32 dx;
+  dx.col(0) = x[1] - x[0];
+  dx.col(1) = x[2] - x[0];
+  return dx * m.du_inv;
+}
+
+Mat2 green_strain(const Mat32& f) { return 0.5 * (f.transpose() * f - Mat2::Identity()); }
+
+Mat2 membrane_stress(const Mat2& e, const MembraneStiffness& k) {
+  Mat2 s;
+  s(0, 0) = k.c11 * e(0, 0) + k.c12 * e(1, 1);
+  s(1, 1) = k.c12 * e(0, 0) + k.c22 * e(1, 1);
+  s(0, 1) = s(1, 0) = 2.0 * k.c33 * e(0, 1);
+  return s;
+}
+
+double membrane_energy(const TriStencil& x, const MembraneElement& m) {
+  return m.area * energy_density(green_strain(deformation_gradient(x, m)), m.k);
+}
+
+VecN<9> membrane_gradient(const TriStencil& x, const MembraneElement& m) {
+  Mat32 f = deformation_gradient(x, m);
+  Mat32 p = f * membrane_stress(green_strain(f), m.k);
+  auto g = shape_gradients(m);
+  VecN<9> out;
+  for (int a = 0; a < 3; ++a) out.segment<3>(3 * a) = m.area * p * g[static_cast<std::size_t>(a)];
+  return out;
+}
+
+MatN<9> membrane_hessian(const TriStencil& x, const MembraneElement& m) {
+  Mat32 f = deformation_gradient(x, m);
+  return hessian_with(f, membrane_stress(green_strain(f), m.k), m);
+}
+
+MatN<9> membrane_hessian_psd(const TriStencil& x, const MembraneElement& m) {
+  Mat32 f = deformation_gradient(x, m);
+  return hessian_with(f, clamp_negative(membrane_stress(green_strain(f), m.k)), m);
+}
+
+MembraneEval membrane_eval(const TriStencil& x, const MembraneElement& m) {
+  Mat32 f = deformation_gradient(x, m);
+  Mat2 e = green_strain(f);
+  Mat2 s = membrane_stress(e, m.k);
+  MembraneEval r;
+  r.energy = m.area * energy_density(e, m.k);
+  Mat32 p = f * s;
+  auto g = shape_gradients(m);
+  for (int a = 0; a < 3; ++a) r.gradient.segment<3>(3 * a) = m.area * p * g[static_cast<std::size_t>(a)];
+  r.hessian = hessian_with(f, clamp_negative(s), m);
+  return r;
+}
+
+}  // namespace vdc

@@ -1,0 +1,46 @@
+// Constant-strain triangle membrane on Green strain with an orthotropic (warp, weft, shear)
+// St. Venant-Kirchhoff energy: psi = 1/2 (c11 E11^2 + 2 c12 E11 E22 + c22 E22^2 + c33 (2 E12)^2),
+// W = A psi, F = Dx Du^-1 (Narain et al. 2012 section 3; Volino et al. 2009 for the strain model).
+#pragma once
+#include <array>
+
+#include "core/math.hpp"
+
+namespace vdc {
+
+// Stiffness in N/m: warp (material u axis), weft (material v axis), their coupling, in-plane shear.
+struct MembraneStiffness {
+  double c11 = 0, c12 = 0, c22 = 0, c33 = 0;
+};
+
+struct MembraneElement {
+  Mat2 du_inv = Mat2::Identity();  // inverse of [u1 - u0, u2 - u0]
+  double area = 0;                  // rest (material-space) area
+  MembraneStiffness k;
+};
+
+using TriStencil = std::array<Vec3, 3>;
+
+MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k);
+
+Mat32 deformation_gradient(const TriStencil& x, const MembraneElement& m);
+Mat2 green_strain(const Mat32& f);
+// Second Piola-Kirchhoff stress dpsi/dE (symmetric 2x2).
+Mat2 membrane_stress(const Mat2& strain, const MembraneStiffness& k);
+
+double membrane_energy(const TriStencil& x, const MembraneElement& m);
+VecN<9> membrane_gradient(const TriStencil& x, const MembraneElement& m);
+MatN<9> membrane_hessian(const TriStencil& x, const MembraneElement& m);  // exact
+// Positive semi-definite: the geometric-stiffness term uses the stress with negative principal
+// values clamped to zero; the material term J^T C J is PSD already. Equal to the exact Hessian
+// whenever the element is not in compression.
+MatN<9> membrane_hessian_psd(const TriStencil& x, const MembraneElement& m);
+
+struct MembraneEval {
+  double energy;
+  VecN<9> gradient;
+  MatN<9> hessian;  // PSD
+};
+MembraneEval membrane_eval(const TriStencil& x, const MembraneElement& m);
+
+}  // namespace vdc
