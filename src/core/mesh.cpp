@@ -1,6 +1,8 @@
 #include "core/mesh.hpp"
 
 #include <algorithm>
+#include <map>
+#include <numeric>
 #include <set>
 #include <sstream>
 
@@ -256,6 +258,27 @@ bool Mesh::is_seam(EdgeId e) const {
   return edge_vert(e, 0, 0) != edge_vert(e, 1, 0) || edge_vert(e, 0, 1) != edge_vert(e, 1, 1);
 }
 
+int Mesh::fan_count(NodeId n) const {
+  // Union-find over the faces at the node, joined through the interior edges at the node.
+  std::map<int32_t, int32_t> local;
+  for (VertId v : node_verts(n))
+    for (FaceId f : vert_faces(v)) local.emplace(f.idx, static_cast<int32_t>(local.size()));
+  std::vector<int32_t> parent(local.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&parent](int32_t i) {
+    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)];
+    return i;
+  };
+  for (EdgeId e : node_edges(n)) {
+    FaceId a = edge_face(e, 0), b = edge_face(e, 1);
+    if (a.valid() && b.valid() && local.count(a.idx) && local.count(b.idx))
+      parent[static_cast<std::size_t>(root(local[a.idx]))] = root(local[b.idx]);
+  }
+  int fans = 0;
+  for (std::size_t i = 0; i < parent.size(); ++i) fans += root(static_cast<int32_t>(i)) == static_cast<int32_t>(i);
+  return fans;
+}
+
 double Mesh::material_area(FaceId f) const {
   const auto& vs = face_verts(f);
   return 0.5 * signed_area2(u(vs[0]), u(vs[1]), u(vs[2]));
@@ -370,6 +393,7 @@ ValidationReport Mesh::validate() const {
     for (VertId v : node_verts(n))
       if (!alive(v) || vert_node(v) != n) bad(name("node", n.idx) + " lists a vert that is not its own");
     if (!x(n).allFinite() || !v(n).allFinite()) bad(name("node", n.idx) + " has a non-finite position or velocity");
+    if (!node_edges(n).empty() && fan_count(n) != 1) bad(name("node", n.idx) + " is a non-manifold vertex (its faces form several fans)");
   }
   return r;
 }

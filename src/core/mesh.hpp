@@ -129,6 +129,9 @@ class Mesh {
   // The edge joining two nodes, or an invalid handle.
   EdgeId find_edge(NodeId a, NodeId b) const;
 
+  // Number of separate fans the faces around a node form (1 for a manifold vertex).
+  int fan_count(NodeId n) const;
+
   // --- geometry ---
   double material_area(FaceId f) const;  // signed, positive for a counter-clockwise face
   double world_area(FaceId f) const;
@@ -145,7 +148,8 @@ class Mesh {
   const AttributeSet<FaceTag>& face_attrs() const { return face_attrs_; }
 
   // Checks every invariant: references alive and reciprocal, adjacency lists exact, edges
-  // manifold and consistently oriented, no duplicate edges, faces non-degenerate in material space.
+  // manifold and consistently oriented, vertices manifold (one fan), no duplicate edges, faces
+  // non-degenerate in material space.
   ValidationReport validate() const;
 
  private:

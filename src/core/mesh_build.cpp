@@ -3,15 +3,30 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <string>
 
 namespace vdc {
 
 namespace {
 
+// Positions as the file numbers them (1-based).
 std::string corner_list(const std::array<Corner, 3>& f) {
-  return std::to_string(f[0].node) + ", " + std::to_string(f[1].node) + ", " + std::to_string(f[2].node);
+  return std::to_string(f[0].node + 1) + ", " + std::to_string(f[1].node + 1) + ", " + std::to_string(f[2].node + 1);
+}
+
+// Why add_face refused a face, in the file's terms: which edge, by 1-based position numbers.
+std::string refusal(const Mesh& mesh, const std::vector<NodeId>& node_of, const std::array<Corner, 3>& f) {
+  for (int i = 0; i < 3; ++i) {
+    const Corner &p = f[static_cast<std::size_t>(i)], &q = f[static_cast<std::size_t>((i + 1) % 3)];
+    NodeId a = node_of[static_cast<std::size_t>(p.node)], b = node_of[static_cast<std::size_t>(q.node)];
+    EdgeId e = mesh.find_edge(a, b);
+    if (!e.valid()) continue;
+    const std::string edge = "edge between positions " + std::to_string(p.node + 1) + " and " + std::to_string(q.node + 1);
+    if (mesh.edge_face(e, 0).valid() && mesh.edge_face(e, 1).valid()) return "non-manifold " + edge + " (a third face)";
+    int side = mesh.edge_node(e, 0) == a ? 0 : 1;
+    if (mesh.edge_face(e, side).valid()) return "inconsistently oriented faces at the " + edge;
+  }
+  return "face refused";
 }
 
 // Relative area below which a triangle counts as degenerate: area < kDegenerate * (longest edge)^2.
@@ -21,34 +36,6 @@ template <class V>
 bool degenerate(double area, const V& a, const V& b, const V& c) {
   double l2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
   return !(std::abs(area) > kDegenerate * l2) || l2 == 0;
-}
-
-int32_t find_root(std::vector<int32_t>& parent, int32_t i) {
-  while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-  return i;
-}
-
-// A vertex is manifold when its faces form one fan (connected through the edges at the node).
-void check_vertex_fans(const Mesh& mesh, const std::vector<int32_t>& first_face_of_node) {
-  for (NodeId n : mesh.nodes()) {
-    std::vector<FaceId> faces;
-    for (VertId v : mesh.node_verts(n))
-      for (FaceId f : mesh.vert_faces(v)) faces.push_back(f);
-    std::map<int32_t, int32_t> local;
-    for (FaceId f : faces) local.emplace(f.idx, static_cast<int32_t>(local.size()));
-    std::vector<int32_t> parent(local.size());
-    std::iota(parent.begin(), parent.end(), 0);
-    for (EdgeId e : mesh.node_edges(n)) {
-      FaceId a = mesh.edge_face(e, 0), b = mesh.edge_face(e, 1);
-      if (a.valid() && b.valid()) parent[static_cast<std::size_t>(find_root(parent, local[a.idx]))] = find_root(parent, local[b.idx]);
-    }
-    int32_t roots = 0;
-    for (std::size_t i = 0; i < parent.size(); ++i) roots += find_root(parent, static_cast<int32_t>(i)) == static_cast<int32_t>(i);
-    if (roots > 1)
-      throw MeshBuildError(first_face_of_node[static_cast<std::size_t>(n.idx)],
-                           "non-manifold vertex: the faces around node " + std::to_string(n.idx) +
-                               " form " + std::to_string(roots) + " separate fans");
-  }
 }
 
 }  // namespace
@@ -68,12 +55,13 @@ Mesh build_mesh(const MeshSource& src) {
   }
   Mesh mesh;
   std::vector<NodeId> node_of(src.positions.size());
-  std::vector<int32_t> first_face_of_node;
+  std::vector<int32_t> first_face_of_node, source_of;
   for (std::size_t i = 0; i < src.positions.size(); ++i) {
     if (!used[i]) continue;
     if (!src.positions[i].allFinite()) throw MeshBuildError(-1, "position " + std::to_string(i + 1) + " is not finite");
     node_of[i] = mesh.add_node(src.positions[i]);
     first_face_of_node.push_back(-1);
+    source_of.push_back(static_cast<int32_t>(i));
   }
   std::map<std::pair<int32_t, int32_t>, VertId> vert_of;
   for (std::size_t fi = 0; fi < src.faces.size(); ++fi) {
@@ -105,11 +93,15 @@ Mesh build_mesh(const MeshSource& src) {
     }
     try {
       mesh.add_face(vs[0], vs[1], vs[2]);
-    } catch (const TopologyError& e) {
-      throw MeshBuildError(face_index, e.what());
+    } catch (const TopologyError&) {
+      throw MeshBuildError(face_index, refusal(mesh, node_of, f));
     }
   }
-  check_vertex_fans(mesh, first_face_of_node);
+  for (NodeId n : mesh.nodes())
+    if (int fans = mesh.fan_count(n); fans > 1)
+      throw MeshBuildError(first_face_of_node[static_cast<std::size_t>(n.idx)],
+                           "non-manifold vertex: the faces around position " + std::to_string(source_of[static_cast<std::size_t>(n.idx)] + 1) +
+                               " form " + std::to_string(fans) + " separate fans");
   return mesh;
 }
 

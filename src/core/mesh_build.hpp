@@ -32,7 +32,8 @@ class MeshBuildError : public TopologyError {
 // use; nodes keep the order of `positions`.
 Mesh build_mesh(const MeshSource& src);
 
-// The arrays of a mesh, in its own order (compact meshes give back exactly what built them).
+// The arrays of a mesh in its own order: the same faces, nodes and uvs (uvs numbered in the mesh's
+// vert order, i.e. first use, which may differ from the arrays that built it).
 MeshSource mesh_source(const Mesh& mesh);
 
 // A size_x by size_y metre sheet split into nx by ny cells of two triangles each (diagonals

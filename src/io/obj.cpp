@@ -1,6 +1,7 @@
 #include "io/obj.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -16,7 +17,8 @@ std::string line_place(int line) { return "line " + std::to_string(line); }
 
 double parse_number(const std::string& tok, const std::string& path, int line) {
   double value = 0;
-  auto res = std::from_chars(tok.data(), tok.data() + tok.size(), value);
+  const char* begin = tok.data() + (tok.size() > 1 && tok[0] == '+' ? 1 : 0);  // from_chars refuses a leading '+'
+  auto res = std::from_chars(begin, tok.data() + tok.size(), value);
   if (res.ec != std::errc() || res.ptr != tok.data() + tok.size() || !std::isfinite(value))
     throw InputError(path, line_place(line), "expected a number, found '" + tok + "'");
   return value;

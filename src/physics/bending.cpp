@@ -71,7 +71,7 @@ MatN<12> dihedral_angle_hessian(const BendStencil& x) {
 }
 
 double bending_coefficient(double stiffness, double rest_length, double rest_area0, double rest_area1) {
-  return stiffness * 3.0 * rest_length * rest_length / (2.0 * (rest_area0 + rest_area1));
+  return stiffness * rest_length * rest_length / (2.0 * (rest_area0 + rest_area1));
 }
 
 double bending_energy(const BendStencil& x, const BendingElement& b) {

@@ -1,5 +1,7 @@
 // Discrete-shell bending (Grinspun et al. 2003, "Discrete Shells"; gradient as in Bridson et al.
-// 2003): E = k (theta - theta0)^2 * 3|e|^2 / (2 (A0 + A1)) with rest edge length and areas.
+// 2003): E = k (theta - theta0)^2 |e|^2 / (2 (A0 + A1)) with rest edge length and areas. The
+// factor 1/2 makes a regular equilateral mesh bent to curvature kappa store the continuum
+// plate energy 1/2 k kappa^2 per unit area, whatever the bending direction.
 // Stencil: x0, x1 the edge; x2 opposite in the face running x0 -> x1; x3 opposite in the other.
 #pragma once
 #include <array>
@@ -18,7 +20,7 @@ MatN<12> dihedral_angle_hessian(const BendStencil& x);  // exact, by forward dif
 
 struct BendingElement {
   double theta0 = 0;  // rest angle
-  double coeff = 0;   // k * 3 |e|^2 / (2 (A0 + A1)), so E = coeff (theta - theta0)^2
+  double coeff = 0;   // k |e|^2 / (2 (A0 + A1)), so E = coeff (theta - theta0)^2
 };
 
 // Coefficient for bending stiffness k (N m), rest edge length and the rest areas of the two faces.

@@ -32,6 +32,7 @@ StepReport ImplicitIntegrator::step(Eigen::VectorXd& x, Eigen::VectorXd& v, cons
   SolveReport s = solver_->solve(assembler_.matrix(), assembler_.rhs(), dv_);
   r.solve_seconds = seconds_since(t1);
   r.solver_iterations = s.iterations;
+  r.factorizations = s.factorizations;
   if (!s.ok) {
     r.failure = "linear solver failed (relative residual " + std::to_string(s.residual) + ")";
     dv_.setZero();

@@ -13,6 +13,7 @@ struct StepReport {
   bool ok = false;
   std::string failure;  // why the step was refused, when !ok
   int solver_iterations = 0;
+  int factorizations = 0;
   double assemble_seconds = 0, solve_seconds = 0;
   double max_dv = 0;  // largest velocity change of a free node, m/s
 };

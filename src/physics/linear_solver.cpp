@@ -3,10 +3,27 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
+#include <cmath>
+
+#include <omp.h>
 
 namespace vdc {
 
 namespace {
+
+// CHOLMOD's dense kernels run in BLAS. With an OpenMP BLAS, its threads would spin against the
+// caller's and, on a loaded machine, slow a factorization down by orders of magnitude; the
+// supernodes of a garment mesh are small, so the BLAS calls run on the calling thread alone.
+class SerialBlas {
+ public:
+  SerialBlas() : saved_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~SerialBlas() { omp_set_num_threads(saved_); }
+  SerialBlas(const SerialBlas&) = delete;
+  SerialBlas& operator=(const SerialBlas&) = delete;
+
+ private:
+  int saved_;
+};
 
 double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
   double nb = b.norm();
@@ -18,11 +35,13 @@ class DirectSolver final : public LinearSolver {
  public:
   void analyze(const SparseMatrix& a) override { llt_.analyzePattern(a); }
   SolveReport solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    SerialBlas serial;
     SolveReport r;
     llt_.factorize(a);
     if (llt_.info() != Eigen::Success) return r;
     x = llt_.solve(b);
     r.iterations = 1;
+    r.factorizations = 1;
     r.residual = relative_residual(a, b, x);
     r.ok = llt_.info() == Eigen::Success && x.allFinite() && r.residual < 1e-6;
     return r;
@@ -53,10 +72,101 @@ class CgSolver final : public LinearSolver {
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>> cg_;
 };
 
+// y = A p for a symmetric matrix stored by columns: row i of A is column i, so each entry of y is
+// one column's dot product, computed in parallel and in a fixed order.
+void symmetric_multiply(const SparseMatrix& a, const Eigen::VectorXd& p, Eigen::VectorXd& y, int threads) {
+  const auto* outer = a.outerIndexPtr();
+  const auto* inner = a.innerIndexPtr();
+  const double* val = a.valuePtr();
+  const auto n = static_cast<int64_t>(a.cols());
+  y.resize(n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int64_t j = 0; j < n; ++j) {
+    double s = 0;
+    for (auto k = outer[j]; k < outer[j + 1]; ++k) s += val[k] * p[inner[k]];
+    y[j] = s;
+  }
+}
+
+// Conjugate gradients preconditioned by a Cholesky factor of an earlier matrix of the same
+// pattern (a lagged factorization): within a frame the system changes little, so a few
+// iterations, each one pair of triangular solves, replace a new factorization. The factor is
+// renewed when the iteration count grows, and a solve that does not converge falls back to a
+// fresh factorization, so the answer always meets the tolerance.
+class CholmodPcgSolver final : public LinearSolver {
+ public:
+  explicit CholmodPcgSolver(const LinearSolverParams& p) : params_(p) {}
+  void analyze(const SparseMatrix& a) override {
+    SerialBlas serial;
+    llt_.analyzePattern(a);
+    have_factor_ = false;
+  }
+  SolveReport solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
+    SerialBlas serial;
+    SolveReport r;
+    if (have_factor_ && !refactor_) {
+      r = pcg(a, b, x, 2 * params_.refactor_iterations);
+      if (r.ok) {
+        refactor_ = r.iterations > params_.refactor_iterations;
+        return r;
+      }
+    }
+    llt_.factorize(a);
+    have_factor_ = llt_.info() == Eigen::Success;
+    refactor_ = false;
+    SolveReport direct = have_factor_ ? pcg(a, b, x, 2 * params_.refactor_iterations) : SolveReport{};
+    direct.factorizations = 1;
+    direct.iterations += r.iterations;
+    return direct;
+  }
+
+ private:
+  SolveReport pcg(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x, int max_iterations) {
+    SolveReport rep;
+    const double bnorm = b.norm();
+    if (bnorm == 0) {
+      x.setZero();
+      rep.ok = true;
+      return rep;
+    }
+    x = llt_.solve(b);  // the preconditioner applied to b: exact when the factor is current
+    symmetric_multiply(a, x, ap_, params_.threads);
+    r_ = b - ap_;
+    for (int it = 1; it <= max_iterations; ++it) {
+      rep.residual = r_.norm() / bnorm;
+      if (!std::isfinite(rep.residual)) return rep;
+      if (rep.residual <= params_.cg_tolerance) {
+        rep.ok = true;
+        return rep;
+      }
+      rep.iterations = it;
+      z_ = llt_.solve(r_);
+      double rz = r_.dot(z_);
+      if (it == 1) p_ = z_;
+      else p_ = z_ + (rz / rz_old_) * p_;
+      rz_old_ = rz;
+      symmetric_multiply(a, p_, ap_, params_.threads);
+      double alpha = rz / p_.dot(ap_);
+      x += alpha * p_;
+      r_ -= alpha * ap_;
+    }
+    rep.residual = r_.norm() / bnorm;
+    rep.ok = rep.residual <= params_.cg_tolerance && x.allFinite();
+    return rep;
+  }
+
+  LinearSolverParams params_;
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+  bool have_factor_ = false, refactor_ = false;
+  Eigen::VectorXd r_, z_, p_, ap_;
+  double rz_old_ = 0;
+};
+
 }  // namespace
 
 bool parse_linear_solver_kind(const std::string& name, LinearSolverKind& kind) {
-  if (name == "cholmod") kind = LinearSolverKind::Cholmod;
+  if (name == "cholmod-pcg") kind = LinearSolverKind::CholmodPcg;
+  else if (name == "cholmod") kind = LinearSolverKind::Cholmod;
   else if (name == "ldlt") kind = LinearSolverKind::SimplicialLdlt;
   else if (name == "cg") kind = LinearSolverKind::ConjugateGradient;
   else return false;
@@ -65,6 +175,7 @@ bool parse_linear_solver_kind(const std::string& name, LinearSolverKind& kind) {
 
 const char* linear_solver_name(LinearSolverKind kind) {
   switch (kind) {
+    case LinearSolverKind::CholmodPcg: return "cholmod-pcg";
     case LinearSolverKind::Cholmod: return "cholmod";
     case LinearSolverKind::SimplicialLdlt: return "ldlt";
     case LinearSolverKind::ConjugateGradient: return "cg";
@@ -74,6 +185,8 @@ const char* linear_solver_name(LinearSolverKind kind) {
 
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const LinearSolverParams& params) {
   switch (kind) {
+    case LinearSolverKind::CholmodPcg:
+      return std::make_unique<CholmodPcgSolver>(params);
     case LinearSolverKind::Cholmod:
       return std::make_unique<DirectSolver<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>>();
     case LinearSolverKind::SimplicialLdlt:

@@ -1,4 +1,5 @@
-// Sparse symmetric positive-definite solvers behind one interface: CHOLMOD supernodal Cholesky,
+// Sparse symmetric positive-definite solvers behind one interface: CHOLMOD supernodal Cholesky
+// factored every solve, conjugate gradients preconditioned by a reused (lagged) CHOLMOD factor,
 // Eigen's simplicial LDL^T, and conjugate gradients with a Jacobi preconditioner.
 #pragma once
 #include <memory>
@@ -8,21 +9,26 @@
 
 namespace vdc {
 
-enum class LinearSolverKind { Cholmod, SimplicialLdlt, ConjugateGradient };
+enum class LinearSolverKind { CholmodPcg, Cholmod, SimplicialLdlt, ConjugateGradient };
 
-// Parses "cholmod", "ldlt" or "cg"; returns false for anything else.
+// Parses "cholmod-pcg", "cholmod", "ldlt" or "cg"; returns false for anything else.
 bool parse_linear_solver_kind(const std::string& name, LinearSolverKind& kind);
 const char* linear_solver_name(LinearSolverKind kind);
 
 struct SolveReport {
   bool ok = false;
-  int iterations = 0;  // CG iterations; 1 for direct solvers
+  int iterations = 0;      // CG iterations; 1 for a direct solve
+  int factorizations = 0;  // Cholesky factorizations done by this solve
   double residual = 0;  // relative residual |A x - b| / |b|
 };
 
 struct LinearSolverParams {
-  double cg_tolerance = 1e-8;  // relative residual
-  int cg_max_iterations = 2000;
+  double cg_tolerance = 1e-6;  // relative residual for the iterative solvers
+  int cg_max_iterations = 2000;  // Jacobi-preconditioned CG
+  // cholmod-pcg: refactor when the preconditioned CG needed more than this many iterations, or
+  // fall back to a fresh factorization when it has not converged within twice as many.
+  int refactor_iterations = 6;
+  int threads = 1;  // for the matrix-vector products of cholmod-pcg
 };
 
 class LinearSolver {

@@ -1,0 +1,197 @@
+#include "app/cli.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "core/error.hpp"
+#include "io/run_output.hpp"
+#include "scene/scene.hpp"
+#include "sim/simulation.hpp"
+
+namespace vdc {
+
+namespace {
+
+const char* kMainHelp =
+    "vdcloth: view-dependent adaptive cloth simulation\n"
+    "\n"
+    "usage:\n"
+    "  vdcloth run SCENE.json [options]   simulate a scene\n"
+    "  vdcloth --help                     this text\n"
+    "  vdcloth --version                  version\n"
+    "\n"
+    "`vdcloth run --help` lists the options of run. Exit status: 0 done, 2 bad input or usage,\n"
+    "3 a simulation failure that could not be recovered.\n";
+
+const char* kRunHelp =
+    "usage: vdcloth run SCENE.json [--mode fixed|adaptive|view] [--frames N] [--out DIR] [--threads N]\n"
+    "\n"
+    "Simulates SCENE.json and writes DIR/stats.csv (one row a frame), DIR/frames/ (one OBJ per garment\n"
+    "and obstacle per frame: cloth_<name>.<frame>.obj, obstacle_<name>.<frame>.obj, frame 0000 is the\n"
+    "initial state) and DIR/summary.json.\n"
+    "\n"
+    "options:\n"
+    "  --mode M      fixed (non-adaptive mesh), adaptive (remeshed every frame) or view (adaptive,\n"
+    "                resolution bent to the scene's camera). Default: fixed.\n"
+    "  --frames N    number of frames to simulate (default: the scene's `frames`)\n"
+    "  --out DIR     output directory (default: out/<scene name>)\n"
+    "  --threads N   worker threads (default: all cores)\n"
+    "  --help        this text\n";
+
+struct RunArgs {
+  std::string scene;
+  SimMode mode = SimMode::Fixed;
+  std::optional<int> frames;
+  std::string out;
+  int threads = 0;
+};
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+int parse_positive_int(const std::string& option, const std::string& value) {
+  std::size_t used = 0;
+  long long n = 0;
+  try {
+    n = std::stoll(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != value.size() || value.empty() || n < 1 || n > 1'000'000)
+    throw UsageError(option + " expects a whole number from 1 to 1000000, got '" + value + "'");
+  return static_cast<int>(n);
+}
+
+RunArgs parse_run_args(const std::vector<std::string>& args) {
+  RunArgs r;
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
+    };
+    if (a == "--mode") {
+      const std::string& m = value();
+      if (!parse_sim_mode(m, r.mode)) throw UsageError("--mode expects fixed, adaptive or view, got '" + m + "'");
+    } else if (a == "--frames") {
+      r.frames = parse_positive_int(a, value());
+    } else if (a == "--out") {
+      r.out = value();
+      if (r.out.empty()) throw UsageError("--out needs a directory");
+    } else if (a == "--threads") {
+      r.threads = parse_positive_int(a, value());
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option '" + a + "'");
+    } else if (r.scene.empty()) {
+      r.scene = a;
+    } else {
+      throw UsageError("only one scene file, got '" + r.scene + "' and '" + a + "'");
+    }
+  }
+  if (r.scene.empty()) throw UsageError("run needs a scene file");
+  return r;
+}
+
+std::string format_duration(double s) {
+  std::ostringstream o;
+  int total = static_cast<int>(s + 0.5);
+  if (total >= 3600) o << total / 3600 << "h" << std::setw(2) << std::setfill('0') << (total / 60) % 60 << "m";
+  else if (total >= 60) o << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
+  else o << total << "s";
+  return o.str();
+}
+
+int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool interactive) {
+  Scene scene = load_scene(args.scene);
+  if (args.mode != SimMode::Fixed)
+    throw UsageError(std::string("--mode ") + sim_mode_name(args.mode) + " is not yet available; use --mode fixed");
+  if (args.frames) scene.frames = *args.frames;
+  const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const std::string dir = args.out.empty() ? "out/" + scene.name : args.out;
+  const int frames = scene.frames;
+
+  bool line_open = false;
+  auto log = [&](const std::string& msg) {
+    if (line_open) out << "\n";
+    line_open = false;
+    err << "vdcloth: " << msg << std::endl;
+  };
+  Simulation sim(std::move(scene), SimOptions{args.mode, threads}, log);
+  RunOutput output(dir);
+  output.write_frame(sim, 0);
+  out << "vdcloth: " << sim.scene().name << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", "
+      << threads << " thread(s), " << sim.num_faces() << " faces, output " << dir << std::endl;
+
+  auto t0 = std::chrono::steady_clock::now();
+  int done = 0;
+  try {
+    for (int f = 0; f < frames; ++f) {
+      FrameStats s = sim.step_frame();
+      output.write_frame(sim, s.frame);
+      output.write_stats_row(s);
+      done = s.frame;
+      double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      double left = elapsed / done * (frames - done);
+      std::ostringstream line;
+      line << "frame " << done << " of " << frames << "  " << std::fixed << std::setprecision(3) << s.seconds << " s/frame  "
+           << s.faces << " faces  " << format_duration(left) << " left";
+      if (interactive) {
+        out << "\r" << line.str() << "   " << std::flush;
+        line_open = true;
+      } else {
+        out << line.str() << "\n" << std::flush;
+      }
+    }
+  } catch (const SimulationError& e) {
+    if (line_open) out << "\n";
+    double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    output.write_summary(sim, "failed", e.what(), total, done, threads);
+    err << "vdcloth: simulation failed: " << e.what() << " (frames 0 to " << done << " are in " << dir << ")" << std::endl;
+    return kExitSimulationFailed;
+  }
+  if (line_open) out << "\n";
+  double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  output.write_summary(sim, "done", "", total, done, threads);
+  out << "vdcloth: done, " << done << " frames in " << format_duration(total) << " (" << std::fixed << std::setprecision(3)
+      << total / std::max(done, 1) << " s/frame); results in " << dir << std::endl;
+  return kExitOk;
+}
+
+}  // namespace
+
+int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool interactive) {
+  try {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+      (args.empty() ? err : out) << kMainHelp;
+      return args.empty() ? kExitBadInput : kExitOk;
+    }
+    if (args[0] == "--version") {
+      out << "vdcloth " << VDCLOTH_VERSION << "\n";
+      return kExitOk;
+    }
+    if (args[0] != "run") throw UsageError("unknown command '" + args[0] + "' (try vdcloth --help)");
+    for (std::size_t i = 1; i < args.size(); ++i)
+      if (args[i] == "--help" || args[i] == "-h") {
+        out << kRunHelp;
+        return kExitOk;
+      }
+    return run_command(parse_run_args(args), out, err, interactive);
+  } catch (const UsageError& e) {
+    err << "vdcloth: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const InputError& e) {
+    err << "vdcloth: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const SimulationError& e) {
+    err << "vdcloth: simulation failed: " << e.what() << "\n";
+    return kExitSimulationFailed;
+  }
+}
+
+}  // namespace vdc

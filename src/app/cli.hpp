@@ -1,0 +1,17 @@
+// The vdcloth command line: argument parsing, progress and exit status (0 done, 2 bad input or
+// usage, 3 a simulation failure that could not be recovered).
+#pragma once
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace vdc {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitSimulationFailed = 3;
+
+// `interactive`: out is a terminal, so progress redraws one line instead of logging each frame.
+int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool interactive);
+
+}  // namespace vdc

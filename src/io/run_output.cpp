@@ -1,0 +1,88 @@
+#include "io/run_output.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "io/obj.hpp"
+
+namespace vdc {
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string frame_file(const std::string& dir, const std::string& kind, const std::string& name, int frame) {
+  char num[16];
+  std::snprintf(num, sizeof num, "%04d", frame);
+  return dir + "/frames/" + kind + "_" + name + "." + num + ".obj";
+}
+}  // namespace
+
+RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
+  std::error_code ec;
+  fs::create_directories(fs::path(dir) / "frames", ec);
+  if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
+  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames")) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() == ".obj" && (name.rfind("cloth_", 0) == 0 || name.rfind("obstacle_", 0) == 0))
+      fs::remove(entry.path());
+  }
+  fs::remove(fs::path(dir) / "summary.json", ec);
+  stats_.open(dir + "/stats.csv");
+  if (!stats_) throw InputError(dir + "/stats.csv", "", "cannot write");
+  stats_ << "frame,faces,vertices,seconds,substeps,halvings,solver_iterations,factorizations,assemble_seconds,solve_seconds,"
+            "kinetic_energy,gravitational_energy,elastic_energy\n";
+}
+
+void RunOutput::write_frame(const Simulation& sim, int frame) const {
+  for (const auto& g : sim.scene().garments)
+    if (!write_obj(g.mesh, frame_file(dir_, "cloth", g.name, frame)))
+      throw InputError(frame_file(dir_, "cloth", g.name, frame), "", "cannot write");
+  for (const auto& o : sim.scene().obstacles)
+    if (!write_obj(o.mesh, frame_file(dir_, "obstacle", o.name, frame)))
+      throw InputError(frame_file(dir_, "obstacle", o.name, frame), "", "cannot write");
+}
+
+void RunOutput::write_stats_row(const FrameStats& s) {
+  char line[512];
+  std::snprintf(line, sizeof line, "%d,%d,%d,%.6f,%d,%d,%d,%d,%.6f,%.6f,%.9g,%.9g,%.9g\n", s.frame, s.faces, s.vertices, s.seconds,
+                s.substeps, s.halvings, s.solver_iterations, s.factorizations, s.assemble_seconds, s.solve_seconds, s.energy.kinetic,
+                s.energy.gravitational, s.energy.elastic);
+  stats_ << line << std::flush;
+  if (rows_ == 0) min_faces_ = max_faces_ = s.faces;
+  min_faces_ = std::min(min_faces_, s.faces);
+  max_faces_ = std::max(max_faces_, s.faces);
+  sum_faces_ += s.faces;
+  sum_seconds_ += s.seconds;
+  max_seconds_ = std::max(max_seconds_, s.seconds);
+  ++rows_;
+}
+
+void RunOutput::write_summary(const Simulation& sim, const std::string& status, const std::string& error, double total_seconds,
+                              int frames_done, int threads) const {
+  nlohmann::json j;
+  j["scene"] = sim.scene().path;
+  j["name"] = sim.scene().name;
+  j["status"] = status;
+  if (!error.empty()) j["error"] = error;
+  j["mode"] = sim_mode_name(sim.options().mode);
+  j["threads"] = threads;
+  j["frames"] = frames_done;
+  j["frame_time"] = sim.scene().frame_time;
+  j["substeps"] = sim.scene().substeps;
+  j["linear_solver"] = linear_solver_name(sim.scene().solver.linear);
+  j["total_seconds"] = total_seconds;
+  j["seconds_per_frame"] = {{"mean", rows_ ? sum_seconds_ / rows_ : 0.0}, {"max", max_seconds_}};
+  j["faces"] = {{"min", min_faces_}, {"max", max_faces_}, {"mean", rows_ ? sum_faces_ / rows_ : 0.0}};
+  nlohmann::json garments = nlohmann::json::array();
+  for (const auto& g : sim.scene().garments)
+    garments.push_back({{"name", g.name}, {"material", g.material.name}, {"faces", g.mesh.num_faces()}, {"vertices", g.mesh.num_nodes()}});
+  j["garments"] = garments;
+  std::ofstream out(dir_ + "/summary.json");
+  out << j.dump(2) << "\n";
+  if (!out) throw InputError(dir_ + "/summary.json", "", "cannot write");
+}
+
+}  // namespace vdc

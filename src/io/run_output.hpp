@@ -1,0 +1,32 @@
+// What a run leaves in its output directory: frames/ (one OBJ per garment and obstacle per
+// frame), stats.csv (one row a frame) and summary.json.
+#pragma once
+#include <fstream>
+#include <string>
+
+#include "sim/simulation.hpp"
+
+namespace vdc {
+
+class RunOutput {
+ public:
+  // Creates DIR and DIR/frames, removing frame files of an earlier run. Throws InputError if the
+  // directory cannot be made.
+  explicit RunOutput(const std::string& dir);
+  void write_frame(const Simulation& sim, int frame) const;  // meshes of every garment and obstacle
+  void write_stats_row(const FrameStats& s);
+  // status: "done" or "failed"; error: message when failed.
+  void write_summary(const Simulation& sim, const std::string& status, const std::string& error, double total_seconds,
+                     int frames_done, int threads) const;
+  const std::string& dir() const { return dir_; }
+
+ private:
+  std::string dir_;
+  std::ofstream stats_;
+  double max_seconds_ = 0, sum_seconds_ = 0;
+  int min_faces_ = 0, max_faces_ = 0;
+  double sum_faces_ = 0;
+  int rows_ = 0;
+};
+
+}  // namespace vdc

@@ -1,0 +1,211 @@
+#include "scene/scene.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <limits>
+#include <set>
+
+#include "core/mesh_build.hpp"
+#include "io/json_reader.hpp"
+#include "io/obj.hpp"
+#include "physics/cloth_model.hpp"
+#include "scene/transform.hpp"
+
+namespace vdc {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string resolve(const JsonValue& j, const std::string& scene_path) {
+  std::string rel = j.string();
+  if (rel.empty()) j.fail("empty file name");
+  fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(scene_path).parent_path() / rel;
+  if (!fs::exists(p)) j.fail("file not found: " + p.string());
+  if (!fs::is_regular_file(p)) j.fail("not a regular file: " + p.string());
+  return p.string();
+}
+
+// Runs a loader of a referenced file; its errors keep their own file and line and gain the key path.
+template <class F>
+auto with_key(const JsonValue& j, F&& load) {
+  try {
+    return load();
+  } catch (const InputError& e) {
+    throw InputError(j.file(), j.path(), e.what());
+  }
+}
+
+Transform parse_transform(const JsonValue& j) {
+  j.only_keys({"scale", "rotate", "translate"});
+  Transform t;
+  t.scale = j.positive_or("scale", 1.0);
+  t.rotate_degrees = j.vec3_or("rotate", Vec3::Zero());
+  t.translate = j.vec3_or("translate", Vec3::Zero());
+  return t;
+}
+
+Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment) {
+  if (j.is_string()) {
+    std::string file = resolve(j, scene_path);
+    return with_key(j, [&] { return read_obj(file, garment); });
+  }
+  j.only_keys({"grid"});
+  JsonValue g = j.at("grid");
+  g.only_keys({"size", "cells"});
+  Vec2 size = g.at("size").vec2();
+  if (!(size.x() > 0 && size.y() > 0)) g.at("size").fail("sizes must be greater than 0");
+  JsonValue cells = g.at("cells");
+  auto c = cells.items();
+  if (c.size() != 2) cells.fail("expected [nx, ny]");
+  long long nx = c[0].integer(), ny = c[1].integer();
+  if (nx < 1 || ny < 1 || nx * ny > 4'000'000) cells.fail("cell counts must be between 1 and 4,000,000 in all");
+  return build_mesh(make_grid(size.x(), size.y(), static_cast<int>(nx), static_cast<int>(ny)));
+}
+
+Material parse_material_ref(const JsonValue& j, const std::string& scene_path) {
+  if (j.is_string()) {
+    std::string file = resolve(j, scene_path);
+    return with_key(j, [&] { return load_material(file); });
+  }
+  return parse_material(j);
+}
+
+NodeId nearest_node(const Mesh& mesh, const Vec3& p) {
+  NodeId best;
+  double d = std::numeric_limits<double>::infinity();
+  for (NodeId n : mesh.nodes())
+    if (double e = (mesh.x(n) - p).squaredNorm(); e < d) d = e, best = n;
+  return best;
+}
+
+NodeId nearest_vert_node(const Mesh& mesh, const Vec2& u) {
+  VertId best;
+  double d = std::numeric_limits<double>::infinity();
+  for (VertId v : mesh.verts())
+    if (double e = (mesh.u(v) - u).squaredNorm(); e < d) d = e, best = v;
+  return mesh.vert_node(best);
+}
+
+void parse_handles(const JsonValue& list, GarmentSpec& g) {
+  auto& which = g.mesh.node_attrs().get<int32_t>(kHandleAttr);
+  auto& anchor = g.mesh.node_attrs().get<Vec3>(kAnchorAttr);
+  for (const JsonValue& h : list.items()) {
+    h.only_keys({"nodes", "points", "uv", "release", "path"});
+    ClothHandle handle;
+    handle.release = h.has("release") ? h.at("release").non_negative() : std::numeric_limits<double>::infinity();
+    if (auto path = h.find("path")) {
+      for (const JsonValue& k : path->items()) {
+        k.only_keys({"time", "offset"});
+        Keyframe key{k.at("time").non_negative(), k.at("offset").vec3()};
+        if (!handle.path.empty() && !(key.time > handle.path.back().time)) k.at("time").fail("keyframe times must increase");
+        handle.path.push_back(key);
+      }
+    }
+    std::vector<NodeId> nodes;
+    if (auto ids = h.find("nodes"))
+      for (const JsonValue& id : ids->items()) {
+        long long i = id.integer();
+        if (i < 0 || i >= g.mesh.num_nodes())
+          id.fail("node index out of range (the mesh has " + std::to_string(g.mesh.num_nodes()) + " nodes)");
+        nodes.push_back(NodeId(static_cast<int32_t>(i)));
+      }
+    if (auto pts = h.find("points"))
+      for (const JsonValue& p : pts->items()) nodes.push_back(nearest_node(g.mesh, p.vec3()));
+    if (auto uvs = h.find("uv"))
+      for (const JsonValue& u : uvs->items()) nodes.push_back(nearest_vert_node(g.mesh, u.vec2()));
+    if (nodes.empty()) h.fail("a handle needs at least one of nodes, points or uv");
+    const auto index = static_cast<int32_t>(g.handles.size());
+    for (NodeId n : nodes) {
+      if (which[n] >= 0 && which[n] != index) h.fail("node " + std::to_string(n.idx) + " already belongs to another handle");
+      which[n] = index;
+      anchor[n] = g.mesh.x(n);
+      g.mesh.flags(n) |= kNodeHandle;
+    }
+    g.handles.push_back(handle);
+  }
+}
+
+GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
+  j.only_keys({"name", "mesh", "material", "transform", "handles", "rest_shape"});
+  GarmentSpec g;
+  g.name = j.at("name").string();
+  g.mesh = parse_mesh(j.at("mesh"), scene_path, true);
+  g.material = parse_material_ref(j.at("material"), scene_path);
+  if (auto t = j.find("transform")) {
+    Transform tr = parse_transform(*t);
+    for (NodeId n : g.mesh.nodes()) g.mesh.x(n) = tr.apply(g.mesh.x(n));
+  }
+  std::string rest = j.string_or("rest_shape", "flat");
+  if (rest == "initial") set_rest_angles_from_world(g.mesh);
+  else if (rest != "flat") j.at("rest_shape").fail("expected \"flat\" or \"initial\"");
+  g.mesh.node_attrs().add<int32_t>(kHandleAttr, -1);
+  g.mesh.node_attrs().add<Vec3>(kAnchorAttr, Vec3::Zero());
+  if (auto h = j.find("handles")) parse_handles(*h, g);
+  return g;
+}
+
+ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path) {
+  j.only_keys({"name", "mesh", "transform"});
+  ObstacleSpec o;
+  o.name = j.at("name").string();
+  o.mesh = parse_mesh(j.at("mesh"), scene_path, false);
+  if (auto t = j.find("transform")) {
+    Transform tr = parse_transform(*t);
+    for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = tr.apply(o.mesh.x(n));
+  }
+  return o;
+}
+
+void check_name(const JsonValue& where, const std::string& name, std::set<std::string>& seen) {
+  if (name.empty() || name.find_first_of("/\\ \t.") != std::string::npos)
+    where.fail("names must be non-empty, without spaces, dots or slashes (they name output files)");
+  if (!seen.insert(name).second) where.fail("name '" + name + "' is used twice");
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path) {
+  JsonValue j = JsonValue::load_file(path);
+  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "garments", "obstacles"});
+  Scene s;
+  s.path = path;
+  s.name = j.string_or("name", fs::path(path).stem().string());
+  s.frame_time = j.has("frame_time") ? j.at("frame_time").positive() : s.frame_time;
+  s.frames = static_cast<int>(j.integer_or("frames", s.frames));
+  if (s.frames < 1) j.at("frames").fail("must be at least 1");
+  long long sub = j.integer_or("substeps", s.substeps);
+  if (sub < 1 || sub > 10000) j.at("substeps").fail("must be between 1 and 10000");
+  s.substeps = static_cast<int>(sub);
+  s.gravity = j.vec3_or("gravity", s.gravity);
+  if (auto a = j.find("air")) {
+    a->only_keys({"damping", "drag", "wind"});
+    s.air.damping = a->non_negative_or("damping", 0.0);
+    s.air.drag = a->non_negative_or("drag", 0.0);
+    s.air.wind = a->vec3_or("wind", Vec3::Zero());
+  }
+  if (auto so = j.find("solver")) {
+    so->only_keys({"linear", "cg_tolerance", "cg_max_iterations", "max_velocity_change"});
+    if (auto lin = so->find("linear"))
+      if (!parse_linear_solver_kind(lin->string(), s.solver.linear)) lin->fail("expected \"cholmod-pcg\", \"cholmod\", \"ldlt\" or \"cg\"");
+    s.solver.params.cg_tolerance = so->positive_or("cg_tolerance", s.solver.params.cg_tolerance);
+    long long it = so->integer_or("cg_max_iterations", s.solver.params.cg_max_iterations);
+    if (it < 1) so->at("cg_max_iterations").fail("must be at least 1");
+    s.solver.params.cg_max_iterations = static_cast<int>(it);
+    s.solver.max_velocity_change = so->positive_or("max_velocity_change", s.solver.max_velocity_change);
+  }
+  std::set<std::string> names;
+  for (const JsonValue& g : j.at("garments").items()) {
+    s.garments.push_back(parse_garment(g, path));
+    check_name(g.at("name"), s.garments.back().name, names);
+  }
+  if (s.garments.empty()) j.at("garments").fail("a scene needs at least one garment");
+  if (auto obs = j.find("obstacles"))
+    for (const JsonValue& o : obs->items()) {
+      s.obstacles.push_back(parse_obstacle(o, path));
+      check_name(o.at("name"), s.obstacles.back().name, names);
+    }
+  return s;
+}
+
+}  // namespace vdc

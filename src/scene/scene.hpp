@@ -1,0 +1,57 @@
+// A scene: garments (mesh, placement, material, handles), obstacles, gravity, air, timing and
+// solver settings, read from JSON (format in docs/scene-format.md).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/mesh.hpp"
+#include "physics/assembly.hpp"
+#include "physics/linear_solver.hpp"
+#include "physics/material.hpp"
+#include "scene/handle.hpp"
+
+namespace vdc {
+
+struct GarmentSpec {
+  std::string name;
+  Mesh mesh;  // placed in world space; node attributes kHandleAttr and kAnchorAttr set
+  Material material;
+  std::vector<ClothHandle> handles;
+};
+
+struct ObstacleSpec {
+  std::string name;
+  Mesh mesh;  // placed in world space
+};
+
+struct AirSpec {
+  double damping = 0.0;  // 1/s
+  double drag = 0.0;     // N s/m^3
+  Vec3 wind = Vec3::Zero();
+};
+
+struct SolverSpec {
+  LinearSolverKind linear = LinearSolverKind::CholmodPcg;
+  LinearSolverParams params;
+  double max_velocity_change = 50.0;  // m/s in one step: beyond it the step is retried smaller
+  int max_step_halvings = 8;
+};
+
+struct Scene {
+  std::string path;  // the scene file
+  std::string name;
+  double frame_time = 0.04;  // s
+  int frames = 250;
+  int substeps = 8;
+  Vec3 gravity = Vec3(0, -9.8, 0);
+  AirSpec air;
+  SolverSpec solver;
+  std::vector<GarmentSpec> garments;
+  std::vector<ObstacleSpec> obstacles;
+};
+
+// Reads and checks a scene and everything it references. Throws InputError naming the file, the
+// key path (e.g. garments[0].material) and the problem.
+Scene load_scene(const std::string& path);
+
+}  // namespace vdc

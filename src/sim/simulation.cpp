@@ -1,0 +1,166 @@
+#include "sim/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace vdc {
+
+bool parse_sim_mode(const std::string& name, SimMode& mode) {
+  if (name == "fixed") mode = SimMode::Fixed;
+  else if (name == "adaptive") mode = SimMode::Adaptive;
+  else if (name == "view") mode = SimMode::View;
+  else return false;
+  return true;
+}
+
+const char* sim_mode_name(SimMode mode) {
+  switch (mode) {
+    case SimMode::Fixed: return "fixed";
+    case SimMode::Adaptive: return "adaptive";
+    case SimMode::View: return "view";
+  }
+  return "?";
+}
+
+Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
+    : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
+  for (auto& g : scene_.garments)
+    if (!g.mesh.is_compact()) g.mesh.compact();
+  rebuild();
+}
+
+void Simulation::rebuild() {
+  model_ = ClothModel();
+  offsets_.clear();
+  for (const auto& g : scene_.garments) offsets_.push_back(append_garment(model_, g.mesh, g.material));
+  LinearSolverParams solver_params = scene_.solver.params;
+  solver_params.threads = options_.threads;
+  integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
+  gather_state();
+}
+
+void Simulation::gather_state() {
+  x_.resize(3 * static_cast<int64_t>(model_.num_nodes));
+  v_.resize(x_.size());
+  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
+    const Mesh& m = scene_.garments[g].mesh;
+    for (NodeId n : m.nodes()) {
+      x_.segment<3>(3 * (offsets_[g] + n.idx)) = m.x(n);
+      v_.segment<3>(3 * (offsets_[g] + n.idx)) = m.v(n);
+    }
+  }
+}
+
+void Simulation::scatter_state() {
+  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
+    Mesh& m = scene_.garments[g].mesh;
+    for (NodeId n : m.nodes()) {
+      m.x(n) = x_.segment<3>(3 * (offsets_[g] + n.idx));
+      m.v(n) = v_.segment<3>(3 * (offsets_[g] + n.idx));
+    }
+  }
+}
+
+std::vector<VelocityConstraint> Simulation::constraints(double t_end, double h) const {
+  std::vector<VelocityConstraint> out;
+  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
+    const auto& garment = scene_.garments[g];
+    const auto& which = garment.mesh.node_attrs().get<int32_t>(kHandleAttr);
+    const auto& anchor = garment.mesh.node_attrs().get<Vec3>(kAnchorAttr);
+    for (NodeId n : garment.mesh.nodes()) {
+      if (which[n] < 0) continue;
+      const ClothHandle& handle = garment.handles[static_cast<std::size_t>(which[n])];
+      if (!handle.active(t_end - 0.5 * h)) continue;
+      const int32_t i = offsets_[g] + n.idx;
+      Vec3 target = anchor[n] + handle.offset(t_end);
+      Vec3 v_new = (target - x_.segment<3>(3 * i)) / h;
+      out.push_back({i, v_new - v_.segment<3>(3 * i)});
+    }
+  }
+  return out;
+}
+
+void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
+  StepParams p;
+  p.h = h;
+  p.gravity = scene_.gravity;
+  p.damping = scene_.air.damping;
+  p.drag = scene_.air.drag;
+  p.wind = scene_.air.wind;
+  p.threads = options_.threads;
+  StepReport r = integrator_->step(x_, v_, constraints(t + h, h), p, scene_.solver.max_velocity_change);
+  stats.assemble_seconds += r.assemble_seconds;
+  stats.solve_seconds += r.solve_seconds;
+  stats.solver_iterations += r.solver_iterations;
+  stats.factorizations += r.factorizations;
+  if (r.ok) {
+    ++stats.substeps;
+    return;
+  }
+  if (depth >= scene_.solver.max_step_halvings) {
+    std::ostringstream msg;
+    msg << "frame " << frame_ + 1 << ": step at t = " << t << " s failed at the smallest step " << h << " s: " << r.failure;
+    throw SimulationError(msg.str());
+  }
+  ++stats.halvings;
+  if (log_) {
+    std::ostringstream msg;
+    msg << "frame " << frame_ + 1 << ": step at t = " << t << " s (h = " << h << " s) refused: " << r.failure
+        << "; retrying as two steps of " << h / 2 << " s";
+    log_(msg.str());
+  }
+  advance(t, h / 2, depth + 1, stats);
+  advance(t + h / 2, h / 2, depth + 1, stats);
+}
+
+FrameStats Simulation::step_frame() {
+  auto t0 = std::chrono::steady_clock::now();
+  FrameStats stats;
+  const double h = scene_.frame_time / scene_.substeps;
+  const double t_frame = time();
+  for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
+  ++frame_;
+  scatter_state();
+  stats.frame = frame_;
+  stats.faces = num_faces();
+  stats.vertices = num_vertices();
+  stats.energy = energy();
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return stats;
+}
+
+int Simulation::num_faces() const {
+  int n = 0;
+  for (const auto& g : scene_.garments) n += g.mesh.num_faces();
+  return n;
+}
+
+int Simulation::num_vertices() const {
+  int n = 0;
+  for (const auto& g : scene_.garments) n += g.mesh.num_nodes();
+  return n;
+}
+
+EnergyReport Simulation::energy() const {
+  EnergyReport e;
+  for (int32_t i = 0; i < model_.num_nodes; ++i) {
+    const double m = model_.node_mass[static_cast<std::size_t>(i)];
+    e.kinetic += 0.5 * m * v_.segment<3>(3 * i).squaredNorm();
+    e.gravitational -= m * scene_.gravity.dot(x_.segment<3>(3 * i));
+  }
+  for (std::size_t f = 0; f < model_.face_nodes.size(); ++f) {
+    const auto& n = model_.face_nodes[f];
+    e.elastic += membrane_energy({x_.segment<3>(3 * n[0]), x_.segment<3>(3 * n[1]), x_.segment<3>(3 * n[2])}, model_.membranes[f]);
+  }
+  for (std::size_t b = 0; b < model_.bend_nodes.size(); ++b) {
+    const auto& n = model_.bend_nodes[b];
+    e.elastic += bending_energy({x_.segment<3>(3 * n[0]), x_.segment<3>(3 * n[1]), x_.segment<3>(3 * n[2]), x_.segment<3>(3 * n[3])},
+                                model_.bends[b]);
+  }
+  return e;
+}
+
+}  // namespace vdc

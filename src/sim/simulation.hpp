@@ -1,0 +1,74 @@
+// Runs a scene frame by frame: substeps of the implicit integrator, handles driving their nodes,
+// and recovery from a failed step by halving it (logged), so a hard frame never ends a run.
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "physics/cloth_model.hpp"
+#include "physics/integrator.hpp"
+#include "scene/scene.hpp"
+
+namespace vdc {
+
+enum class SimMode { Fixed, Adaptive, View };
+bool parse_sim_mode(const std::string& name, SimMode& mode);
+const char* sim_mode_name(SimMode mode);
+
+struct SimOptions {
+  SimMode mode = SimMode::Fixed;
+  int threads = 1;
+};
+
+struct EnergyReport {
+  double kinetic = 0, gravitational = 0, elastic = 0;
+  double total() const { return kinetic + gravitational + elastic; }
+};
+
+struct FrameStats {
+  int frame = 0;
+  int faces = 0, vertices = 0;  // vertices: world-space nodes
+  double seconds = 0;           // wall time of the frame
+  int substeps = 0;             // steps taken, halvings included
+  int halvings = 0;             // failed steps retried at half size
+  int solver_iterations = 0;
+  int factorizations = 0;
+  double assemble_seconds = 0, solve_seconds = 0;
+  EnergyReport energy;
+};
+
+class Simulation {
+ public:
+  using Log = std::function<void(const std::string&)>;
+  Simulation(Scene scene, const SimOptions& options, Log log = {});
+
+  // Simulates the next frame. Throws SimulationError when a step fails even at the smallest size.
+  FrameStats step_frame();
+
+  int frame() const { return frame_; }
+  double time() const { return frame_ * scene_.frame_time; }
+  const Scene& scene() const { return scene_; }
+  const SimOptions& options() const { return options_; }
+  EnergyReport energy() const;
+  int num_faces() const;
+  int num_vertices() const;
+
+ private:
+  void rebuild();                       // elements, assembler and solver from the meshes
+  void gather_state();                  // meshes -> x_, v_
+  void scatter_state();                 // x_, v_ -> meshes
+  std::vector<VelocityConstraint> constraints(double t_end, double h) const;
+  void advance(double t, double h, int depth, FrameStats& stats);
+
+  Scene scene_;
+  SimOptions options_;
+  Log log_;
+  int frame_ = 0;
+  ClothModel model_;
+  std::vector<int32_t> offsets_;  // first model node of each garment
+  std::unique_ptr<ImplicitIntegrator> integrator_;
+  Eigen::VectorXd x_, v_;
+};
+
+}  // namespace vdc
