@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev          # dense and sparse linear algebra
   libsuitesparse-dev     # CHOLMOD sparse Cholesky
+  libopenblas0-openmp    # fast BLAS for CHOLMOD's dense kernels
   nlohmann-json3-dev     # scene and material files
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev       # bench/

@@ -11,19 +11,20 @@ namespace vdc {
 
 namespace {
 
-// CHOLMOD's dense kernels run in BLAS. With an OpenMP BLAS, its threads would spin against the
-// caller's and, on a loaded machine, slow a factorization down by orders of magnitude; the
-// supernodes of a garment mesh are small, so the BLAS calls run on the calling thread alone.
-class SerialBlas {
- public:
-  SerialBlas() : saved_(omp_get_max_threads()) { omp_set_num_threads(1); }
-  ~SerialBlas() { omp_set_num_threads(saved_); }
-  SerialBlas(const SerialBlas&) = delete;
-  SerialBlas& operator=(const SerialBlas&) = delete;
-
- private:
-  int saved_;
-};
+// Runs f on the calling thread with CHOLMOD's own OpenMP loops and its BLAS calls made serial.
+// Debian's CHOLMOD (SuiteSparse 5.12) opens a fixed 4-thread team for small loops of every
+// supernode; on a 2-core machine the thread hand-offs cost more than the arithmetic (a 400
+// MFlop factorization took 120 ms idle and seconds under load). Called from inside an active
+// parallel region, with one active level allowed, those nested regions run on one thread.
+template <class F>
+void cholmod_serial(F&& f) {
+  omp_set_max_active_levels(1);
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp master
+    f();
+  }
+}
 
 double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
   double nb = b.norm();
@@ -33,13 +34,14 @@ double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const 
 template <class Factorization>
 class DirectSolver final : public LinearSolver {
  public:
-  void analyze(const SparseMatrix& a) override { llt_.analyzePattern(a); }
+  void analyze(const SparseMatrix& a) override {
+    cholmod_serial([&] { llt_.analyzePattern(a); });
+  }
   SolveReport solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
-    SerialBlas serial;
     SolveReport r;
-    llt_.factorize(a);
+    cholmod_serial([&] { llt_.factorize(a); });
     if (llt_.info() != Eigen::Success) return r;
-    x = llt_.solve(b);
+    cholmod_serial([&] { x = llt_.solve(b); });
     r.iterations = 1;
     r.factorizations = 1;
     r.residual = relative_residual(a, b, x);
@@ -97,12 +99,10 @@ class CholmodPcgSolver final : public LinearSolver {
  public:
   explicit CholmodPcgSolver(const LinearSolverParams& p) : params_(p) {}
   void analyze(const SparseMatrix& a) override {
-    SerialBlas serial;
-    llt_.analyzePattern(a);
+    cholmod_serial([&] { llt_.analyzePattern(a); });
     have_factor_ = false;
   }
   SolveReport solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) override {
-    SerialBlas serial;
     SolveReport r;
     if (have_factor_ && !refactor_) {
       r = pcg(a, b, x, 2 * params_.refactor_iterations);
@@ -111,7 +111,7 @@ class CholmodPcgSolver final : public LinearSolver {
         return r;
       }
     }
-    llt_.factorize(a);
+    cholmod_serial([&] { llt_.factorize(a); });
     have_factor_ = llt_.info() == Eigen::Success;
     refactor_ = false;
     SolveReport direct = have_factor_ ? pcg(a, b, x, 2 * params_.refactor_iterations) : SolveReport{};
@@ -129,7 +129,7 @@ class CholmodPcgSolver final : public LinearSolver {
       rep.ok = true;
       return rep;
     }
-    x = llt_.solve(b);  // the preconditioner applied to b: exact when the factor is current
+    cholmod_serial([&] { x = llt_.solve(b); });  // the preconditioner applied to b: exact when the factor is current
     symmetric_multiply(a, x, ap_, params_.threads);
     r_ = b - ap_;
     for (int it = 1; it <= max_iterations; ++it) {
@@ -140,7 +140,7 @@ class CholmodPcgSolver final : public LinearSolver {
         return rep;
       }
       rep.iterations = it;
-      z_ = llt_.solve(r_);
+      cholmod_serial([&] { z_ = llt_.solve(r_); });
       double rz = r_.dot(z_);
       if (it == 1) p_ = z_;
       else p_ = z_ + (rz / rz_old_) * p_;

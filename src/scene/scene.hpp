@@ -31,7 +31,7 @@ struct AirSpec {
 };
 
 struct SolverSpec {
-  LinearSolverKind linear = LinearSolverKind::CholmodPcg;
+  LinearSolverKind linear = LinearSolverKind::Cholmod;
   LinearSolverParams params;
   double max_velocity_change = 50.0;  // m/s in one step: beyond it the step is retried smaller
   int max_step_halvings = 8;
