@@ -17,6 +17,8 @@ class AttributeBase {
   // Keep element new_to_old[i] at position i, drop the rest.
   virtual void permute(const std::vector<int32_t>& new_to_old) = 0;
   virtual std::unique_ptr<AttributeBase> clone() const = 0;
+  // Gives element `to` the value of element `from` (a tombstoned `from` still holds its value).
+  virtual void copy_element(std::size_t from, std::size_t to) = 0;
 };
 
 template <class Tag, class T>
@@ -38,6 +40,7 @@ class Attribute final : public AttributeBase {
     data_ = std::move(out);
   }
   std::unique_ptr<AttributeBase> clone() const override { return std::make_unique<Attribute>(*this); }
+  void copy_element(std::size_t from, std::size_t to) override { data_[to] = data_[from]; }
 
  private:
   T default_;
@@ -95,6 +98,10 @@ class AttributeSet {
   void permute(const std::vector<int32_t>& new_to_old) {
     size_ = new_to_old.size();
     for (auto& [name, a] : attrs_) a->permute(new_to_old);
+  }
+  // Every attribute of element `to` takes the value of element `from`.
+  void copy(Handle<Tag> from, Handle<Tag> to) {
+    for (auto& [name, a] : attrs_) a->copy_element(static_cast<std::size_t>(from.idx), static_cast<std::size_t>(to.idx));
   }
 
  private:

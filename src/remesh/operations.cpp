@@ -1,0 +1,228 @@
+// Edge split, flip and collapse (Narain et al. 2012, section 4, after ARCSim's operations).
+#include "remesh/operations.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace vdc {
+
+namespace {
+
+// Smallest material area accepted for a new face, relative to its longest edge squared.
+constexpr double kMinRelativeArea = 1e-6;
+
+using NodePair = std::pair<int32_t, int32_t>;
+NodePair key(NodeId a, NodeId b) { return {std::min(a.idx, b.idx), std::max(a.idx, b.idx)}; }
+
+bool good_material_face(const Mesh& mesh, VertId a, VertId b, VertId c) {
+  const Vec2 &ua = mesh.u(a), &ub = mesh.u(b), &uc = mesh.u(c);
+  double l2 = std::max({(ub - ua).squaredNorm(), (uc - ub).squaredNorm(), (ua - uc).squaredNorm()});
+  return 0.5 * signed_area2(ua, ub, uc) > kMinRelativeArea * l2;
+}
+
+Vec3 world_normal_of(const Mesh& mesh, VertId a, VertId b, VertId c) {
+  return area_normal(mesh.x(mesh.vert_node(a)), mesh.x(mesh.vert_node(b)), mesh.x(mesh.vert_node(c)));
+}
+
+// Replaces `old_faces` by `new_faces` (corner triples), copying face attributes from the
+// face each new one came from, and edge attributes from the old edge with the same ends (or
+// from `edge_source` for the given node pairs). Fills the face and edge parts of the record.
+struct NewFace {
+  std::array<VertId, 3> v;
+  FaceId from;
+};
+void replace_faces(Mesh& mesh, const std::vector<FaceId>& old_faces, const std::vector<NewFace>& new_faces,
+                   const std::map<NodePair, EdgeId>& edge_source, OpRecord& rec) {
+  std::map<NodePair, EdgeId> old_edges = edge_source;
+  for (FaceId f : old_faces)
+    for (EdgeId e : mesh.face_edges(f)) old_edges.emplace(key(mesh.edge_node(e, 0), mesh.edge_node(e, 1)), e);
+  std::vector<EdgeId> before;
+  for (const auto& [k, e] : old_edges)
+    if (mesh.alive(e) && std::find(before.begin(), before.end(), e) == before.end()) before.push_back(e);
+  for (FaceId f : old_faces) {
+    mesh.remove_face(f);
+    rec.removed_faces.push_back(f);
+  }
+  for (const NewFace& nf : new_faces) {
+    FaceId f = mesh.add_face(nf.v[0], nf.v[1], nf.v[2]);
+    mesh.face_attrs().copy(nf.from, f);
+    rec.added_faces.push_back(f);
+  }
+  // Edges that died and edges that were born; a born edge takes the attributes of the old edge
+  // with the same ends, if any.
+  for (EdgeId e : before)
+    if (!mesh.alive(e)) rec.removed_edges.push_back(e);
+  for (FaceId f : rec.added_faces)
+    for (EdgeId e : mesh.face_edges(f)) {
+      if (std::find(before.begin(), before.end(), e) != before.end()) continue;
+      if (std::find(rec.added_edges.begin(), rec.added_edges.end(), e) != rec.added_edges.end()) continue;
+      rec.added_edges.push_back(e);
+      auto it = old_edges.find(key(mesh.edge_node(e, 0), mesh.edge_node(e, 1)));
+      if (it != old_edges.end() && it->second != e) mesh.edge_attrs().copy(it->second, e);
+    }
+}
+
+}  // namespace
+
+bool can_split(const Mesh& mesh, EdgeId e) { return mesh.alive(e); }
+
+OpRecord split_edge(Mesh& mesh, EdgeId e, double t) {
+  if (!can_split(mesh, e)) throw std::logic_error("split_edge: edge is not alive");
+  OpRecord rec;
+  const NodeId n0 = mesh.edge_node(e, 0), n1 = mesh.edge_node(e, 1);
+  const NodeId m = mesh.add_node((1 - t) * mesh.x(n0) + t * mesh.x(n1), (1 - t) * mesh.v(n0) + t * mesh.v(n1));
+  rec.added_nodes.push_back(m);
+  std::vector<FaceId> old_faces;
+  std::vector<NewFace> new_faces;
+  VertId shared_mid;  // the new vert of side 0, reused by side 1 unless the edge is a seam
+  for (int side = 0; side < 2; ++side) {
+    FaceId f = mesh.edge_face(e, side);
+    if (!f.valid()) continue;
+    VertId va = mesh.edge_vert(e, side, 0), vb = mesh.edge_vert(e, side, 1), vc = mesh.opposite_vert(e, side);
+    VertId vm;
+    if (side == 1 && shared_mid.valid() && va == mesh.edge_vert(e, 0, 0) && vb == mesh.edge_vert(e, 0, 1)) {
+      vm = shared_mid;
+    } else {
+      vm = mesh.add_vert(m, (1 - t) * mesh.u(va) + t * mesh.u(vb));
+      mesh.vert_attrs().copy(t < 0.5 ? va : vb, vm);
+      rec.added_verts.push_back(vm);
+    }
+    if (side == 0) shared_mid = vm;
+    old_faces.push_back(f);
+    // Side 0 runs n0 -> n1 counter-clockwise: (a, b, c); side 1 runs n1 -> n0: (b, a, c).
+    if (side == 0) {
+      new_faces.push_back({{va, vm, vc}, f});
+      new_faces.push_back({{vm, vb, vc}, f});
+    } else {
+      new_faces.push_back({{vb, vm, vc}, f});
+      new_faces.push_back({{vm, va, vc}, f});
+    }
+  }
+  std::map<NodePair, EdgeId> halves{{key(n0, m), e}, {key(m, n1), e}};
+  replace_faces(mesh, old_faces, new_faces, halves, rec);
+  return rec;
+}
+
+bool can_flip(const Mesh& mesh, EdgeId e) {
+  if (!mesh.alive(e) || mesh.is_boundary(e) || mesh.is_seam(e)) return false;
+  const NodeId c = mesh.opposite_node(e, 0), d = mesh.opposite_node(e, 1);
+  if (c == d || mesh.find_edge(c, d).valid()) return false;
+  const VertId v0 = mesh.edge_vert(e, 0, 0), v1 = mesh.edge_vert(e, 0, 1);
+  const VertId vc = mesh.opposite_vert(e, 0), vd = mesh.opposite_vert(e, 1);
+  // The quad n0, d, n1, c is counter-clockwise; the new diagonal joins c and d.
+  if (!good_material_face(mesh, v0, vd, vc) || !good_material_face(mesh, vd, v1, vc)) return false;
+  const Vec3 n_old = world_normal_of(mesh, v0, v1, vc) + world_normal_of(mesh, v1, v0, vd);
+  return world_normal_of(mesh, v0, vd, vc).dot(n_old) > 0 && world_normal_of(mesh, vd, v1, vc).dot(n_old) > 0;
+}
+
+OpRecord flip_edge(Mesh& mesh, EdgeId e) {
+  if (!can_flip(mesh, e)) throw std::logic_error("flip_edge: flip not allowed");
+  OpRecord rec;
+  const VertId v0 = mesh.edge_vert(e, 0, 0), v1 = mesh.edge_vert(e, 0, 1);
+  const VertId vc = mesh.opposite_vert(e, 0), vd = mesh.opposite_vert(e, 1);
+  const FaceId f0 = mesh.edge_face(e, 0), f1 = mesh.edge_face(e, 1);
+  replace_faces(mesh, {f0, f1}, {{{v0, vd, vc}, f0}, {{vd, v1, vc}, f1}}, {}, rec);
+  return rec;
+}
+
+namespace {
+
+bool is_boundary_node(const Mesh& mesh, NodeId n) {
+  for (EdgeId e : mesh.node_edges(n))
+    if (mesh.is_boundary(e)) return true;
+  return false;
+}
+
+// Faces around the removed node rewritten onto the kept vert; faces that contain both ends
+// (those of e) disappear.
+std::vector<NewFace> collapsed_faces(const Mesh& mesh, EdgeId e, int remove, std::vector<FaceId>& old_faces) {
+  const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
+  const int side = mesh.edge_face(e, 0).valid() ? 0 : 1;
+  const VertId vk = mesh.edge_vert(e, side, 1 - remove);
+  std::vector<NewFace> out;
+  for (VertId vr : mesh.node_verts(r))
+    for (FaceId f : mesh.vert_faces(vr)) {
+      old_faces.push_back(f);
+      auto vs = mesh.face_verts(f);
+      bool has_k = false;
+      for (VertId v : vs) has_k = has_k || mesh.vert_node(v) == k;
+      if (has_k) continue;
+      for (VertId& v : vs)
+        if (v == vr) v = vk;
+      out.push_back({vs, f});
+    }
+  return out;
+}
+
+}  // namespace
+
+bool can_collapse(const Mesh& mesh, EdgeId e, int remove) {
+  if (!mesh.alive(e) || (remove != 0 && remove != 1)) return false;
+  const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
+  if (mesh.flags(r) & kNodeHandle) return false;
+  if (mesh.node_verts(r).size() != 1) return false;  // seam nodes stay
+  if (mesh.is_seam(e)) return false;
+  if (is_boundary_node(mesh, r)) {
+    if (!mesh.is_boundary(e)) return false;
+    // Only along a straight boundary: r's two boundary edges must be collinear in material space.
+    std::vector<NodeId> ends;
+    for (EdgeId b : mesh.node_edges(r))
+      if (mesh.is_boundary(b)) ends.push_back(mesh.edge_node(b, 0) == r ? mesh.edge_node(b, 1) : mesh.edge_node(b, 0));
+    if (ends.size() != 2) return false;
+    const VertId vr = mesh.node_verts(r).front();
+    auto u_of = [&](NodeId n) {
+      // The vert of n next to r: the one sharing a face with r's vert.
+      for (FaceId f : mesh.vert_faces(vr))
+        for (VertId v : mesh.face_verts(f))
+          if (mesh.vert_node(v) == n) return mesh.u(v);
+      return mesh.u(mesh.node_verts(n).front());
+    };
+    const Vec2 a = u_of(ends[0]) - mesh.u(vr), b = u_of(ends[1]) - mesh.u(vr);
+    if (std::abs(a.x() * b.y() - a.y() * b.x()) > 1e-9 * a.norm() * b.norm() || a.dot(b) >= 0) return false;
+  }
+  // Link condition: the only common neighbours of r and k are the opposite nodes of e.
+  std::vector<int32_t> nr, nk;
+  for (EdgeId x : mesh.node_edges(r)) nr.push_back((mesh.edge_node(x, 0) == r ? mesh.edge_node(x, 1) : mesh.edge_node(x, 0)).idx);
+  for (EdgeId x : mesh.node_edges(k)) nk.push_back((mesh.edge_node(x, 0) == k ? mesh.edge_node(x, 1) : mesh.edge_node(x, 0)).idx);
+  std::sort(nr.begin(), nr.end());
+  std::sort(nk.begin(), nk.end());
+  std::vector<int32_t> common;
+  std::set_intersection(nr.begin(), nr.end(), nk.begin(), nk.end(), std::back_inserter(common));
+  int expected = 0;
+  for (int side = 0; side < 2; ++side) expected += mesh.edge_face(e, side).valid() ? 1 : 0;
+  if (static_cast<int>(common.size()) != expected) return false;
+  // No new face inverted or degenerate in material space, none flipped in world space.
+  std::vector<FaceId> old_faces;
+  for (const NewFace& nf : collapsed_faces(mesh, e, remove, old_faces)) {
+    if (!good_material_face(mesh, nf.v[0], nf.v[1], nf.v[2])) return false;
+    const auto& ov = mesh.face_verts(nf.from);
+    if (world_normal_of(mesh, nf.v[0], nf.v[1], nf.v[2]).dot(world_normal_of(mesh, ov[0], ov[1], ov[2])) <= 0) return false;
+  }
+  return true;
+}
+
+OpRecord collapse_edge(Mesh& mesh, EdgeId e, int remove) {
+  if (!can_collapse(mesh, e, remove)) throw std::logic_error("collapse_edge: collapse not allowed");
+  OpRecord rec;
+  const NodeId r = mesh.edge_node(e, remove);
+  const VertId vr = mesh.node_verts(r).front();
+  const NodeId k = mesh.edge_node(e, 1 - remove);
+  std::vector<FaceId> old_faces;
+  std::vector<NewFace> new_faces = collapsed_faces(mesh, e, remove, old_faces);
+  // Edge (k, x) that replaces (r, x) keeps its attributes.
+  std::map<NodePair, EdgeId> moved;
+  for (EdgeId x : mesh.node_edges(r)) {
+    NodeId other = mesh.edge_node(x, 0) == r ? mesh.edge_node(x, 1) : mesh.edge_node(x, 0);
+    if (other != k) moved.emplace(key(k, other), x);
+  }
+  replace_faces(mesh, old_faces, new_faces, moved, rec);
+  mesh.remove_vert(vr);
+  mesh.remove_node(r);
+  rec.removed_verts.push_back(vr);
+  rec.removed_nodes.push_back(r);
+  return rec;
+}
+
+}  // namespace vdc
