@@ -1,0 +1,139 @@
+// Remeshing loop (Narain et al. 2012, section 4; edge metric eq. 1 of the seed paper).
+#include "remesh/remesher.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vdc {
+
+namespace {
+
+const Attribute<VertTag, Mat2>& sizing(const Mesh& mesh) { return mesh.vert_attrs().get<Mat2>(kSizingAttr); }
+
+double size2(const Mesh& mesh, VertId a, VertId b) {
+  const auto& m = sizing(mesh);
+  Vec2 d = mesh.u(a) - mesh.u(b);
+  return d.dot(0.5 * (m[a] + m[b]) * d);
+}
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Flips every edge that fails the Delaunay test, sweeping until none does (or the pass bound).
+int flip_all(Mesh& mesh, const RemeshOptions& o) {
+  int flips = 0;
+  for (int pass = 0; pass < o.max_passes; ++pass) {
+    int this_pass = 0;
+    std::vector<EdgeId> edges;
+    for (EdgeId e : mesh.edges()) edges.push_back(e);
+    for (EdgeId e : edges)
+      if (mesh.alive(e) && should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e)) {
+        flip_edge(mesh, e);
+        ++this_pass;
+      }
+    flips += this_pass;
+    if (this_pass == 0) break;
+  }
+  return flips;
+}
+
+int split_all(Mesh& mesh, const RemeshOptions& o) {
+  int splits = 0;
+  auto& m = mesh.vert_attrs().get<Mat2>(kSizingAttr);
+  for (int pass = 0; pass < o.max_passes; ++pass) {
+    std::vector<std::pair<double, EdgeId>> invalid;
+    for (EdgeId e : mesh.edges())
+      if (double s2 = edge_size2(mesh, e); s2 > 1.0) invalid.emplace_back(s2, e);
+    if (invalid.empty()) break;
+    std::stable_sort(invalid.begin(), invalid.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (const auto& [s2, e] : invalid) {
+      if (!mesh.alive(e) || edge_size2(mesh, e) <= 1.0) continue;
+      // The sizing of a new vert is the mean of the tensors at the ends of its side.
+      OpRecord r = split_edge(mesh, e, 0.5);
+      for (VertId v : r.added_verts) {
+        Mat2 sum = Mat2::Zero();
+        int count = 0;
+        for (FaceId f : mesh.vert_faces(v))
+          for (VertId w : mesh.face_verts(f))
+            if (w != v && (mesh.vert_node(w) == mesh.edge_node(e, 0) || mesh.vert_node(w) == mesh.edge_node(e, 1))) {
+              sum += m[w];
+              ++count;
+            }
+        m[v] = count ? Mat2(sum / count) : m[v];
+      }
+      ++splits;
+    }
+  }
+  return splits;
+}
+
+// Largest s^2 among the edges that collapsing e (removing end `remove`) would create.
+double collapse_worst(const Mesh& mesh, EdgeId e, int remove) {
+  const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
+  const int side = mesh.edge_face(e, 0).valid() ? 0 : 1;
+  const VertId vk = mesh.edge_vert(e, side, 1 - remove);
+  double worst = 0;
+  for (VertId vr : mesh.node_verts(r))
+    for (FaceId f : mesh.vert_faces(vr))
+      for (VertId w : mesh.face_verts(f))
+        if (mesh.vert_node(w) != r && mesh.vert_node(w) != k) worst = std::max(worst, size2(mesh, vk, w));
+  return worst;
+}
+
+int collapse_all(Mesh& mesh, const RemeshOptions& o) {
+  int collapses = 0;
+  for (int pass = 0; pass < o.max_passes; ++pass) {
+    std::vector<std::pair<double, EdgeId>> candidates;
+    for (EdgeId e : mesh.edges()) candidates.emplace_back(edge_size2(mesh, e), e);
+    std::stable_sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    int this_pass = 0;
+    for (const auto& [s2, e] : candidates) {
+      if (!mesh.alive(e)) continue;
+      for (int remove = 0; remove < 2; ++remove) {
+        if (!can_collapse(mesh, e, remove) || collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin) continue;
+        collapse_edge(mesh, e, remove);
+        ++this_pass;
+        break;
+      }
+    }
+    collapses += this_pass;
+    if (this_pass == 0) break;
+  }
+  return collapses;
+}
+
+}  // namespace
+
+double edge_size2(const Mesh& mesh, EdgeId e) {
+  double s2 = 0;
+  for (int side = 0; side < 2; ++side)
+    if (mesh.edge_face(e, side).valid()) s2 = std::max(s2, size2(mesh, mesh.edge_vert(e, side, 0), mesh.edge_vert(e, side, 1)));
+  return s2;
+}
+
+bool should_flip(const Mesh& mesh, EdgeId e, double threshold) {
+  if (mesh.is_boundary(e) || mesh.is_seam(e)) return false;
+  const VertId vi = mesh.edge_vert(e, 0, 0), vj = mesh.edge_vert(e, 0, 1);
+  const VertId vk = mesh.opposite_vert(e, 0), vl = mesh.opposite_vert(e, 1);
+  const auto& m = sizing(mesh);
+  const Mat2 M = 0.25 * (m[vi] + m[vj] + m[vk] + m[vl]);
+  const Vec2 ujk = mesh.u(vj) - mesh.u(vk), uik = mesh.u(vi) - mesh.u(vk);
+  const Vec2 uil = mesh.u(vi) - mesh.u(vl), ujl = mesh.u(vj) - mesh.u(vl);
+  // The angles opposite e, at k and l, measured in the metric, sum to more than pi exactly when
+  // sin(k + l) = sin k cos l + cos k sin l < 0. Sines are proportional to the (positive) areas,
+  // cosines to M-dot products; the common factors cancel in the sign.
+  const double sk = std::abs(cross2(ujk, uik)), sl = std::abs(cross2(uil, ujl));
+  const double a = sk * uil.dot(M * ujl) + ujk.dot(M * uik) * sl;
+  return a < -threshold * (sk + sl);
+}
+
+RemeshStats remesh(Mesh& mesh, const RemeshOptions& options) {
+  RemeshStats s;
+  s.splits = split_all(mesh, options);
+  s.flips = flip_all(mesh, options);
+  s.collapses = collapse_all(mesh, options);
+  s.flips += flip_all(mesh, options);
+  mesh.compact();
+  return s;
+}
+
+}  // namespace vdc

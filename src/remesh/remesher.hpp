@@ -1,0 +1,35 @@
+// The remeshing loop of Narain et al. 2012 (section 4) for a given sizing field: split every
+// invalid edge (s^2 > 1, eq. 1 of the seed paper), largest first; flip to an anisotropically
+// Delaunay mesh; collapse every edge whose removal leaves no edge above 1 - margin.
+#pragma once
+#include "core/mesh.hpp"
+#include "remesh/operations.hpp"
+
+namespace vdc {
+
+// Vert attribute holding the sizing tensor M (symmetric 2x2, material space, 1/m^2).
+inline constexpr const char* kSizingAttr = "sizing";
+
+struct RemeshOptions {
+  double collapse_margin = 0.2;   // a collapse may not create an edge with s^2 > 1 - margin
+  double flip_threshold = 1e-3;   // flip only when the Delaunay test fails by more than this
+  int max_passes = 20;            // bound on split and flip sweeps
+};
+
+struct RemeshStats {
+  int splits = 0, flips = 0, collapses = 0;
+};
+
+// s^2 of an edge: u_ij^T ((M_i + M_j) / 2) u_ij, the largest over the two sides of a seam.
+double edge_size2(const Mesh& mesh, EdgeId e);
+
+// True when edge e (interior, not a seam) fails the anisotropic Delaunay test by more than
+// `threshold` (relative): the other diagonal is the better one in the metric.
+bool should_flip(const Mesh& mesh, EdgeId e, double threshold);
+
+// Remeshes to the sizing field in the vert attribute kSizingAttr (Mat2). Split verts get the
+// mean of the two ends' tensors. Node positions and velocities of new nodes are interpolated by
+// the split. The mesh is left compact.
+RemeshStats remesh(Mesh& mesh, const RemeshOptions& options = {});
+
+}  // namespace vdc
