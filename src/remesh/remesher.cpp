@@ -26,7 +26,7 @@ int flip_all(Mesh& mesh, const RemeshOptions& o) {
     std::vector<EdgeId> edges;
     for (EdgeId e : mesh.edges()) edges.push_back(e);
     for (EdgeId e : edges)
-      if (mesh.alive(e) && should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e)) {
+      if (mesh.alive(e) && should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, e)) {
         flip_edge(mesh, e);
         ++this_pass;
       }
@@ -124,6 +124,10 @@ bool should_flip(const Mesh& mesh, EdgeId e, double threshold) {
   const double sk = std::abs(cross2(ujk, uik)), sl = std::abs(cross2(uil, ujl));
   const double a = sk * uil.dot(M * ujl) + ujk.dot(M * uik) * sl;
   return a < -threshold * (sk + sl);
+}
+
+bool flip_keeps_valid(const Mesh& mesh, EdgeId e) {
+  return size2(mesh, mesh.opposite_vert(e, 0), mesh.opposite_vert(e, 1)) <= 1.0;
 }
 
 RemeshStats remesh(Mesh& mesh, const RemeshOptions& options) {

@@ -27,6 +27,9 @@ double edge_size2(const Mesh& mesh, EdgeId e);
 // `threshold` (relative): the other diagonal is the better one in the metric.
 bool should_flip(const Mesh& mesh, EdgeId e, double threshold);
 
+// True when flipping e would give a diagonal with s^2 <= 1 (a flip never makes an invalid edge).
+bool flip_keeps_valid(const Mesh& mesh, EdgeId e);
+
 // Remeshes to the sizing field in the vert attribute kSizingAttr (Mat2). Split verts get the
 // mean of the two ends' tensors. Node positions and velocities of new nodes are interpolated by
 // the split. The mesh is left compact.

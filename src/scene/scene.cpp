@@ -167,7 +167,7 @@ void check_name(const JsonValue& where, const std::string& name, std::set<std::s
 
 Scene load_scene(const std::string& path) {
   JsonValue j = JsonValue::load_file(path);
-  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "garments", "obstacles"});
+  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "garments", "obstacles"});
   Scene s;
   s.path = path;
   s.name = j.string_or("name", fs::path(path).stem().string());
@@ -193,6 +193,22 @@ Scene load_scene(const std::string& path) {
     if (it < 1) so->at("cg_max_iterations").fail("must be at least 1");
     s.solver.params.cg_max_iterations = static_cast<int>(it);
     s.solver.max_velocity_change = so->positive_or("max_velocity_change", s.solver.max_velocity_change);
+  }
+  if (auto r = j.find("remeshing")) {
+    r->only_keys({"refine_angle", "refine_velocity", "refine_compression", "size", "aspect_min", "fixed_size"});
+    auto& p = s.remeshing;
+    p.refine_angle = r->positive_or("refine_angle", p.refine_angle);
+    p.refine_velocity = r->positive_or("refine_velocity", p.refine_velocity);
+    p.refine_compression = r->positive_or("refine_compression", p.refine_compression);
+    if (auto size = r->find("size")) {
+      Vec2 range = size->vec2();
+      if (!(range.x() > 0 && range.y() >= range.x())) size->fail("expected [min, max] with 0 < min <= max (metres)");
+      p.size_min = range.x();
+      p.size_max = range.y();
+    }
+    p.aspect_min = r->positive_or("aspect_min", p.aspect_min);
+    if (p.aspect_min > 1) r->at("aspect_min").fail("must be at most 1");
+    s.fixed_size = r->positive_or("fixed_size", 0.0);
   }
   std::set<std::string> names;
   for (const JsonValue& g : j.at("garments").items()) {

@@ -8,6 +8,7 @@
 #include "physics/assembly.hpp"
 #include "physics/linear_solver.hpp"
 #include "physics/material.hpp"
+#include "remesh/sizing.hpp"
 #include "scene/handle.hpp"
 
 namespace vdc {
@@ -46,6 +47,8 @@ struct Scene {
   Vec3 gravity = Vec3(0, -9.8, 0);
   AirSpec air;
   SolverSpec solver;
+  SizingParams remeshing;  // the `remeshing` block
+  double fixed_size = 0;   // m: edge size of --mode fixed; 0 means remeshing.size_min
   std::vector<GarmentSpec> garments;
   std::vector<ObstacleSpec> obstacles;
 };

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "remesh/remesher.hpp"
+#include "remesh/sizing.hpp"
 
 namespace vdc {
 
@@ -27,9 +29,28 @@ const char* sim_mode_name(SimMode mode) {
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
     : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
-  for (auto& g : scene_.garments)
+  for (auto& g : scene_.garments) {
     if (!g.mesh.is_compact()) g.mesh.compact();
+    if (options_.mode == SimMode::Fixed) {
+      // The non-adaptive baseline: one remesh to a uniform resolution, never again.
+      set_uniform_sizing(g.mesh, scene_.fixed_size > 0 ? scene_.fixed_size : scene_.remeshing.size_min);
+      remesh(g.mesh);
+    }
+  }
   rebuild();
+}
+
+void Simulation::remesh_garments(FrameStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  for (auto& g : scene_.garments) {
+    compute_sizing(g.mesh, scene_.remeshing);
+    RemeshStats r = remesh(g.mesh);
+    stats.splits += r.splits;
+    stats.flips += r.flips;
+    stats.collapses += r.collapses;
+  }
+  rebuild();
+  stats.remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void Simulation::rebuild() {
@@ -121,6 +142,7 @@ FrameStats Simulation::step_frame() {
   FrameStats stats;
   const double h = scene_.frame_time / scene_.substeps;
   const double t_frame = time();
+  if (options_.mode == SimMode::Adaptive) remesh_garments(stats);
   for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
   ++frame_;
   scatter_state();

@@ -35,6 +35,8 @@ struct FrameStats {
   int solver_iterations = 0;
   int factorizations = 0;
   double assemble_seconds = 0, solve_seconds = 0;
+  double remesh_seconds = 0;  // sizing, remeshing and rebuilding the system (adaptive mode)
+  int splits = 0, flips = 0, collapses = 0;
   EnergyReport energy;
 };
 
@@ -56,6 +58,7 @@ class Simulation {
 
  private:
   void rebuild();                       // elements, assembler and solver from the meshes
+  void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
   void gather_state();                  // meshes -> x_, v_
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;

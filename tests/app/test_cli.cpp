@@ -37,7 +37,7 @@ class CliTest : public ::testing::Test {
   }
   std::string scene(const std::string& garment_extra = "", const std::string& top_extra = "",
                     const std::string& material = "\"cotton.json\"", const std::string& mesh = "\"sheet.obj\"") {
-    return write("scene.json", "{\"frames\": 2, \"substeps\": 2, " + top_extra + "\"garments\": [{\"name\": \"s\", \"mesh\": " + mesh +
+    return write("scene.json", "{\"frames\": 2, \"substeps\": 2, \"remeshing\": {\"fixed_size\": 0.5}, " + top_extra + "\"garments\": [{\"name\": \"s\", \"mesh\": " + mesh +
                                    ", \"material\": " + material + garment_extra + "}]}");
   }
   int run(std::vector<std::string> args) {

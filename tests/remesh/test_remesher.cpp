@@ -28,7 +28,8 @@ void expect_remeshed(const Mesh& mesh, const RemeshOptions& o) {
   ASSERT_TRUE(v.ok()) << v.summary();
   for (EdgeId e : mesh.edges()) {
     EXPECT_LE(edge_size2(mesh, e), 1.0 + 1e-12) << "edge " << e.idx;
-    EXPECT_FALSE(should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e)) << "edge " << e.idx << " not Delaunay";
+    EXPECT_FALSE(should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, e))
+        << "edge " << e.idx << " not Delaunay";
   }
   for (FaceId f : mesh.faces()) {
     EXPECT_GT(mesh.material_area(f), 0);

@@ -1,0 +1,47 @@
+// Physical sizing field of adaptive remeshing (Narain et al. 2012, section 5): per face, a
+// symmetric 2x2 tensor M in material space from curvature, velocity gradient and compression,
+// clamped to [1/size_max^2, 1/size_min^2] with bounded anisotropy, then moved to verts by
+// area-weighted averaging. A FaceSizingModifier may change the face tensors before that move
+// (view-dependent sizing plugs in there) without the remesher knowing why.
+#pragma once
+#include "core/mesh.hpp"
+
+namespace vdc {
+
+struct SizingParams {
+  double refine_angle = 0.3;          // rad: largest normal change across an edge
+  double refine_velocity = 0.5;       // m/s: largest velocity difference across an edge
+  double refine_compression = 0.01;   // m: resolution of buckles under compression
+  double size_min = 0.01;             // m
+  double size_max = 0.2;              // m
+  double aspect_min = 0.2;            // smallest ratio of the short to the long axis of a face
+};
+
+// Face attribute holding the face tensors of the last compute_sizing.
+inline constexpr const char* kFaceSizingAttr = "face_sizing";
+
+class FaceSizingModifier {
+ public:
+  virtual ~FaceSizingModifier() = default;
+  // Called with the clamped physical tensors; may rewrite them.
+  virtual void modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing) const = 0;
+};
+
+// The physical tensor of one face before clamping: the largest of the criteria.
+Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& node_normals, const SizingParams& p);
+// Eigenvalues clamped to [1/size_max^2, 1/size_min^2], then the smaller raised to at least
+// aspect_min^2 times the larger.
+Mat2 clamp_sizing(const Mat2& m, const SizingParams& p);
+// The "max" of two tensors: in the eigenbasis of their sum, the larger of their quadratic
+// forms along each axis (exact when they share eigenvectors, and never below either along
+// those axes).
+Mat2 tensor_max(const Mat2& a, const Mat2& b);
+
+// Computes face tensors (kFaceSizingAttr), lets `modifier` change them, and averages them onto
+// verts by material area (kSizingAttr, read by remesh()).
+void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier = nullptr);
+
+// A constant isotropic field of size h on every vert (the fixed-resolution baseline).
+void set_uniform_sizing(Mesh& mesh, double h);
+
+}  // namespace vdc

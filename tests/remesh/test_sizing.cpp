@@ -1,0 +1,91 @@
+// Sizing field: clamping, the tensor max, and the curvature and velocity criteria against
+// analytic values.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "core/mesh_build.hpp"
+#include "remesh/remesher.hpp"
+#include "remesh/sizing.hpp"
+
+namespace vdc {
+namespace {
+
+Vec2 eigenvalues(const Mat2& m) {
+  Eigen::SelfAdjointEigenSolver<Mat2> eig;
+  eig.computeDirect(m);
+  return eig.eigenvalues();
+}
+
+TEST(Sizing, ClampBoundsEigenvaluesAndAnisotropy) {
+  SizingParams p;  // sizes 1 cm to 20 cm, aspect 0.2
+  Mat2 tiny = Mat2::Identity() * 1e-6, huge = Mat2::Identity() * 1e9;
+  EXPECT_NEAR(eigenvalues(clamp_sizing(tiny, p))[0], 1 / (0.2 * 0.2), 1e-9);
+  EXPECT_NEAR(eigenvalues(clamp_sizing(huge, p))[1], 1 / (0.01 * 0.01), 1e-6);
+  // Strongly anisotropic: 1/(1 cm)^2 along u, nothing along v. The v eigenvalue is raised to
+  // aspect^2 times the u one: 0.04 * 10^4 = 400 (5 cm edges along v).
+  Mat2 aniso = Mat2::Zero();
+  aniso(0, 0) = 1e4;
+  Vec2 l = eigenvalues(clamp_sizing(aniso, p));
+  EXPECT_NEAR(l[0], 400, 1e-9);
+  EXPECT_NEAR(l[1], 1e4, 1e-9);
+}
+
+TEST(Sizing, TensorMaxIsTheMaxOnSharedAxesAndDominatesOnRandomPairs) {
+  Mat2 a = Vec2(4, 1).asDiagonal(), b = Vec2(2, 3).asDiagonal();
+  EXPECT_LT((tensor_max(a, b) - Mat2(Vec2(4, 3).asDiagonal())).norm(), 1e-12);
+  EXPECT_LT((tensor_max(a, Mat2::Zero()) - a).norm(), 1e-12);
+}
+
+TEST(Sizing, CurvatureCriterionOnACylinderMatchesKappaOverRefineAngle) {
+  // A sheet rolled on a cylinder of radius R about the material v axis: the normal turns at
+  // rate 1/R along u and not along v, so the face tensor is diag(1/(R a)^2, 0) before clamping
+  // (a = refine_angle): edges along u at most a R long.
+  const double radius = 0.5;
+  Mesh mesh = build_mesh(make_grid(0.6, 0.6, 30, 30));
+  for (NodeId n : mesh.nodes()) {
+    const Vec2& u = mesh.u(mesh.node_verts(n).front());
+    double t = u.x() / radius;
+    mesh.x(n) = Vec3(radius * std::sin(t), radius * (1 - std::cos(t)), -u.y());
+  }
+  SizingParams p;
+  std::vector<Vec3> normals(static_cast<std::size_t>(mesh.node_capacity()));
+  for (NodeId n : mesh.nodes()) {
+    const Vec2& u = mesh.u(mesh.node_verts(n).front());
+    double t = u.x() / radius;
+    normals[static_cast<std::size_t>(n.idx)] = Vec3(-std::sin(t), std::cos(t), 0);  // exact cylinder normals
+  }
+  const double expected = 1 / std::pow(radius * p.refine_angle, 2);
+  for (FaceId f : mesh.faces()) {
+    Mat2 m = face_sizing_unclamped(mesh, f, normals, p);
+    EXPECT_NEAR(m(0, 0), expected, 0.01 * expected);
+    EXPECT_NEAR(m(1, 1), 0.0, 1e-6 * expected);
+  }
+}
+
+TEST(Sizing, VelocityCriterionMatchesTheGradient) {
+  // v = (0, w u_x, 0): a shear flow whose velocity changes by w per metre along u.
+  const double w = 2.0;
+  Mesh mesh = build_mesh(make_grid(1, 1, 4, 4));
+  for (NodeId n : mesh.nodes()) mesh.v(n) = Vec3(0, w * mesh.x(n).x(), 0);
+  SizingParams p;
+  std::vector<Vec3> flat(static_cast<std::size_t>(mesh.node_capacity()), Vec3(0, 1, 0));
+  for (FaceId f : mesh.faces()) {
+    Mat2 m = face_sizing_unclamped(mesh, f, flat, p);
+    EXPECT_NEAR(m(0, 0), w * w / (p.refine_velocity * p.refine_velocity), 1e-9);
+    EXPECT_NEAR(m(1, 1), 0.0, 1e-9);
+  }
+}
+
+TEST(Sizing, VertsAverageTheirFacesByArea) {
+  Mesh mesh = build_mesh(make_grid(1, 1, 2, 2));
+  SizingParams p;
+  compute_sizing(mesh, p);
+  // A flat sheet at rest asks for the coarsest size everywhere.
+  const auto& vert = mesh.vert_attrs().get<Mat2>(kSizingAttr);
+  for (VertId v : mesh.verts()) EXPECT_LT((vert[v] - Mat2::Identity() / (0.2 * 0.2)).norm(), 1e-9);
+}
+
+}  // namespace
+}  // namespace vdc
