@@ -26,6 +26,17 @@ void cholmod_serial(F&& f) {
   }
 }
 
+// Fill-reducing ordering for CHOLMOD: METIS nested dissection. On garment meshes (3x3 blocks,
+// bending stencils) it gives 13% fewer flops than CHOLMOD's default AMD choice and about 20%
+// faster factorizations (bench/RESULTS.md).
+template <class Factorization>
+void prefer_nested_dissection(Factorization& llt) {
+  if constexpr (requires { llt.cholmod(); }) {
+    llt.cholmod().nmethods = 1;
+    llt.cholmod().method[0].ordering = CHOLMOD_METIS;
+  }
+}
+
 double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
   double nb = b.norm();
   return nb > 0 ? (a * x - b).norm() / nb : (a * x).norm();
@@ -34,6 +45,7 @@ double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const 
 template <class Factorization>
 class DirectSolver final : public LinearSolver {
  public:
+  DirectSolver() { prefer_nested_dissection(llt_); }
   void analyze(const SparseMatrix& a) override {
     cholmod_serial([&] { llt_.analyzePattern(a); });
   }
@@ -97,7 +109,7 @@ void symmetric_multiply(const SparseMatrix& a, const Eigen::VectorXd& p, Eigen::
 // fresh factorization, so the answer always meets the tolerance.
 class CholmodPcgSolver final : public LinearSolver {
  public:
-  explicit CholmodPcgSolver(const LinearSolverParams& p) : params_(p) {}
+  explicit CholmodPcgSolver(const LinearSolverParams& p) : params_(p) { prefer_nested_dissection(llt_); }
   void analyze(const SparseMatrix& a) override {
     cholmod_serial([&] { llt_.analyzePattern(a); });
     have_factor_ = false;
