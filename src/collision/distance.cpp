@@ -1,0 +1,59 @@
+// Point-triangle and segment-segment distances (closest points by region, as in Ericson,
+// "Real-Time Collision Detection", sections 5.1.5 and 5.1.9).
+#include "collision/distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vdc {
+
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double n2 = n.squaredNorm();
+  if (n2 > 0) {
+    // Inside the prism over the triangle: the distance to the plane.
+    const Vec3 q = p - (p - a).dot(n) / n2 * n;
+    const double u = (b - q).cross(c - q).dot(n), v = (c - q).cross(a - q).dot(n), w = (a - q).cross(b - q).dot(n);
+    if (u >= 0 && v >= 0 && w >= 0) return std::abs((p - a).dot(n)) / std::sqrt(n2);
+  }
+  return std::min({point_segment_distance(p, a, b), point_segment_distance(p, b, c), point_segment_distance(p, c, a)});
+}
+
+double segment_segment_distance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 d1 = b - a, d2 = d - c, r = a - c;
+  const double aa = d1.squaredNorm(), ee = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (aa <= 0 && ee <= 0) return r.norm();
+  if (aa <= 0) {
+    t = std::clamp(f / ee, 0.0, 1.0);
+  } else {
+    const double cc = d1.dot(r);
+    if (ee <= 0) {
+      s = std::clamp(-cc / aa, 0.0, 1.0);
+    } else {
+      const double bb = d1.dot(d2), denom = aa * ee - bb * bb;
+      s = denom > 1e-14 * aa * ee ? std::clamp((bb * f - cc * ee) / denom, 0.0, 1.0) : 0.0;
+      t = (bb * s + f) / ee;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-cc / aa, 0.0, 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((bb - cc) / aa, 0.0, 1.0);
+      }
+    }
+  }
+  const double closest = ((a + s * d1) - (c + t * d2)).norm();
+  // Parallel segments: the clamped pair above may miss an overlap; the endpoint distances bound it.
+  return std::min({closest, point_segment_distance(a, c, d), point_segment_distance(b, c, d), point_segment_distance(c, a, b),
+                   point_segment_distance(d, a, b)});
+}
+
+}  // namespace vdc

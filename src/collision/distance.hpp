@@ -1,0 +1,13 @@
+// Exact distances between the primitives of collision handling.
+#pragma once
+#include "core/math.hpp"
+
+namespace vdc {
+
+// Distance from p to the triangle (a, b, c), degenerate triangles included.
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+// Distance between segments [a, b] and [c, d], parallel and degenerate ones included.
+double segment_segment_distance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b);
+
+}  // namespace vdc

@@ -1,0 +1,119 @@
+// Axis-aligned bounding-box hierarchy (median split on the longest axis of the centres).
+#include "core/bvh.hpp"
+
+#include <algorithm>
+
+namespace vdc {
+
+Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
+  std::vector<int32_t> prims(leaf_boxes.size());
+  std::vector<Vec3> centres(leaf_boxes.size());
+  for (std::size_t i = 0; i < leaf_boxes.size(); ++i) {
+    prims[i] = static_cast<int32_t>(i);
+    centres[i] = 0.5 * (leaf_boxes[i].lo + leaf_boxes[i].hi);
+  }
+  nodes_.reserve(2 * leaf_boxes.size() + 1);
+  if (leaf_boxes.empty()) {
+    nodes_.push_back(Node{});
+    return;
+  }
+  build(prims, 0, prims.size(), centres);
+}
+
+int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres) {
+  const auto index = static_cast<int32_t>(nodes_.size());
+  nodes_.push_back(Node{});
+  if (end - begin == 1) {
+    nodes_[static_cast<std::size_t>(index)].prim = prims[begin];
+    nodes_[static_cast<std::size_t>(index)].box = leaf_box_[static_cast<std::size_t>(prims[begin])];
+    return index;
+  }
+  Aabb c;
+  for (std::size_t i = begin; i < end; ++i) c.grow(centres[static_cast<std::size_t>(prims[i])]);
+  int axis = 0;
+  (c.hi - c.lo).maxCoeff(&axis);
+  const std::size_t mid = begin + (end - begin) / 2;
+  std::nth_element(prims.begin() + static_cast<std::ptrdiff_t>(begin), prims.begin() + static_cast<std::ptrdiff_t>(mid),
+                   prims.begin() + static_cast<std::ptrdiff_t>(end), [&](int32_t a, int32_t b) {
+                     return centres[static_cast<std::size_t>(a)][axis] < centres[static_cast<std::size_t>(b)][axis];
+                   });
+  const int32_t left = build(prims, begin, mid, centres);
+  const int32_t right = build(prims, mid, end, centres);
+  Node& n = nodes_[static_cast<std::size_t>(index)];
+  n.left = left;
+  n.right = right;
+  n.box = nodes_[static_cast<std::size_t>(left)].box;
+  n.box.grow(nodes_[static_cast<std::size_t>(right)].box);
+  return index;
+}
+
+void Bvh::refit(const std::vector<Aabb>& leaf_boxes) {
+  leaf_box_ = leaf_boxes;
+  if (!leaf_box_.empty()) refit_node(0);
+}
+
+void Bvh::refit_node(int32_t i) {
+  Node& n = nodes_[static_cast<std::size_t>(i)];
+  if (n.left < 0) {
+    n.box = leaf_box_[static_cast<std::size_t>(n.prim)];
+    return;
+  }
+  refit_node(n.left);
+  refit_node(n.right);
+  n.box = nodes_[static_cast<std::size_t>(n.left)].box;
+  n.box.grow(nodes_[static_cast<std::size_t>(n.right)].box);
+}
+
+void Bvh::self_pairs(const std::function<void(int32_t, int32_t)>& f) const {
+  if (!leaf_box_.empty()) self_node(0, f);
+}
+
+void Bvh::self_node(int32_t a, const std::function<void(int32_t, int32_t)>& f) const {
+  const Node& n = nodes_[static_cast<std::size_t>(a)];
+  if (n.left < 0) return;
+  self_node(n.left, f);
+  self_node(n.right, f);
+  cross(n.left, *this, n.right, f, true);
+}
+
+void Bvh::cross(int32_t a, const Bvh& other, int32_t b, const std::function<void(int32_t, int32_t)>& f, bool self) const {
+  const Node& na = nodes_[static_cast<std::size_t>(a)];
+  const Node& nb = other.nodes_[static_cast<std::size_t>(b)];
+  if (!na.box.overlaps(nb.box)) return;
+  if (na.left < 0 && nb.left < 0) {
+    if (self) f(std::min(na.prim, nb.prim), std::max(na.prim, nb.prim));
+    else f(na.prim, nb.prim);
+    return;
+  }
+  // Descend the larger box (or the one that is not a leaf).
+  const bool split_a = nb.left < 0 || (na.left >= 0 && (na.box.hi - na.box.lo).squaredNorm() >= (nb.box.hi - nb.box.lo).squaredNorm());
+  if (split_a) {
+    cross(na.left, other, b, f, self);
+    cross(na.right, other, b, f, self);
+  } else {
+    cross(a, other, nb.left, f, self);
+    cross(a, other, nb.right, f, self);
+  }
+}
+
+void Bvh::pairs_with(const Bvh& other, const std::function<void(int32_t, int32_t)>& f) const {
+  if (!leaf_box_.empty() && !other.leaf_box_.empty()) cross(0, other, 0, f, false);
+}
+
+void Bvh::query(const Aabb& box, const std::function<void(int32_t)>& f) const {
+  if (leaf_box_.empty()) return;
+  std::vector<int32_t> stack{0};
+  while (!stack.empty()) {
+    const Node& n = nodes_[static_cast<std::size_t>(stack.back())];
+    stack.pop_back();
+    if (!n.box.overlaps(box)) continue;
+    if (n.left < 0) {
+      f(n.prim);
+    } else {
+      stack.push_back(n.left);
+      stack.push_back(n.right);
+    }
+  }
+}
+
+}  // namespace vdc

@@ -1,0 +1,64 @@
+// Bounding-volume hierarchy of axis-aligned boxes over triangles: built by median splits, refit
+// in place when positions move (boxes may be swept: the union over a step), rebuilt when the
+// topology changes. Queries list overlapping leaf pairs within one tree or between two.
+#pragma once
+#include <array>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "core/math.hpp"
+
+namespace vdc {
+
+struct Aabb {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
+  void grow(const Vec3& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  void grow(const Aabb& b) {
+    lo = lo.cwiseMin(b.lo);
+    hi = hi.cwiseMax(b.hi);
+  }
+  void pad(double d) {
+    lo.array() -= d;
+    hi.array() += d;
+  }
+  bool overlaps(const Aabb& b) const { return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all(); }
+};
+
+class Bvh {
+ public:
+  // One box per primitive (a triangle's swept, padded box, say). Builds the tree.
+  explicit Bvh(const std::vector<Aabb>& leaf_boxes);
+  // New boxes for the same primitives, in the same order: refits without changing the tree.
+  void refit(const std::vector<Aabb>& leaf_boxes);
+
+  // Calls f(i, j) with i < j for every pair of primitives of this tree whose boxes overlap.
+  void self_pairs(const std::function<void(int32_t, int32_t)>& f) const;
+  // Calls f(i, j) for every primitive i of this tree and j of `other` whose boxes overlap.
+  void pairs_with(const Bvh& other, const std::function<void(int32_t, int32_t)>& f) const;
+  // Calls f(i) for every primitive whose box overlaps `box`.
+  void query(const Aabb& box, const std::function<void(int32_t)>& f) const;
+
+  int32_t size() const { return static_cast<int32_t>(leaf_box_.size()); }
+  const Aabb& root_box() const { return nodes_.front().box; }
+
+ private:
+  struct Node {
+    Aabb box;
+    int32_t left = -1, right = -1;  // children; -1 for a leaf
+    int32_t prim = -1;              // the primitive of a leaf
+  };
+  int32_t build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
+  void refit_node(int32_t n);
+  void self_node(int32_t a, const std::function<void(int32_t, int32_t)>& f) const;
+  void cross(int32_t a, const Bvh& other, int32_t b, const std::function<void(int32_t, int32_t)>& f, bool self) const;
+
+  std::vector<Node> nodes_;
+  std::vector<Aabb> leaf_box_;
+};
+
+}  // namespace vdc
