@@ -1,0 +1,40 @@
+// Inelastic projection of impact zones (Harmon, Vouga, Tamstorf and Grinspun 2008, section 4):
+// the end-of-step positions of a zone's nodes move as little as possible, in the mass metric,
+// so that every impact's separation along its normal is at least the thickness. Each
+// constraint's weights sum to zero, so the correction conserves the zone's linear momentum
+// exactly, whatever the solver's accuracy; nodes of obstacles have infinite mass and stay put.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "core/math.hpp"
+
+namespace vdc {
+
+// One impact: four points (vertex-face: the vertex, then the face's corners; edge-edge: the
+// two ends of each edge) with weights such that sum_j w_j x_j is the separation vector, and
+// the normal it must point along. `nodes` index the zone's positions; -1 for an obstacle point,
+// whose position is fixed and given in `fixed`.
+struct ImpactConstraint {
+  std::array<int32_t, 4> nodes;
+  std::array<double, 4> weights;
+  std::array<Vec3, 4> fixed;  // used where nodes[j] < 0
+  Vec3 normal;                // unit
+};
+
+struct ProjectionReport {
+  bool converged = false;
+  int iterations = 0;
+  double worst_violation = 0;  // m: thickness minus the smallest separation, after projection
+};
+
+// Separation of constraint c at positions x: normal . sum_j w_j x_j.
+double separation(const ImpactConstraint& c, const std::vector<Vec3>& x);
+
+// Projects positions x (masses m, all > 0) onto {separation >= thickness for every constraint}
+// by projected Gauss-Seidel on the dual variables, up to `tolerance` metres of violation.
+ProjectionReport project_impact_zone(std::vector<Vec3>& x, const std::vector<double>& mass,
+                                     const std::vector<ImpactConstraint>& constraints, double thickness, double tolerance,
+                                     int max_iterations = 200);
+
+}  // namespace vdc
