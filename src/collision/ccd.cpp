@@ -117,6 +117,10 @@ std::array<double, 4> coplanarity_cubic(const Vec3& e1, const Vec3& de1, const V
 Impact vertex_face_ccd(const Vec3& p0, const Vec3& p1, const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1,
                        const Vec3& c0, const Vec3& c1, double eta) {
   const Vec3 dp = p1 - p0, da = a1 - a0, db = b1 - b0, dc = c1 - c0;
+  // Moving every point by at most m changes the distance by at most 2 m: a pair that starts
+  // farther apart than that cannot touch during the step.
+  const double reach = 2 * std::max({dp.norm(), da.norm(), db.norm(), dc.norm()}) + eta;
+  if (point_triangle_distance(p0, a0, b0, c0) > reach) return {};
   const auto k = coplanarity_cubic(b0 - a0, db - da, c0 - a0, dc - da, p0 - a0, dp - da);
   auto at = [&](double t) { return std::array<Vec3, 4>{p0 + t * dp, a0 + t * da, b0 + t * db, c0 + t * dc}; };
   auto dist = [](const std::array<Vec3, 4>& q) { return point_triangle_distance(q[0], q[1], q[2], q[3]); };
@@ -138,6 +142,8 @@ Impact vertex_face_ccd(const Vec3& p0, const Vec3& p1, const Vec3& a0, const Vec
 Impact edge_edge_ccd(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const Vec3& c0, const Vec3& c1,
                      const Vec3& d0, const Vec3& d1, double eta) {
   const Vec3 da = a1 - a0, db = b1 - b0, dc = c1 - c0, dd = d1 - d0;
+  const double reach = 2 * std::max({da.norm(), db.norm(), dc.norm(), dd.norm()}) + eta;
+  if (segment_segment_distance(a0, b0, c0, d0) > reach) return {};
   const auto k = coplanarity_cubic(b0 - a0, db - da, d0 - c0, dd - dc, c0 - a0, dc - da);
   auto at = [&](double t) { return std::array<Vec3, 4>{a0 + t * da, b0 + t * db, c0 + t * dc, d0 + t * dd}; };
   auto dist = [](const std::array<Vec3, 4>& q) { return segment_segment_distance(q[0], q[1], q[2], q[3]); };

@@ -10,4 +10,9 @@ double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, cons
 double segment_segment_distance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b);
 
+// Barycentric weights (of a, b, c) of the point of the triangle closest to p.
+Vec3 closest_triangle_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+// Parameters (s, u) of the closest points a + s (b - a) and c + u (d - c) of two segments.
+Vec2 closest_segment_params(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
 }  // namespace vdc

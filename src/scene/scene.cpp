@@ -167,7 +167,7 @@ void check_name(const JsonValue& where, const std::string& name, std::set<std::s
 
 Scene load_scene(const std::string& path) {
   JsonValue j = JsonValue::load_file(path);
-  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "garments", "obstacles"});
+  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "collision", "garments", "obstacles"});
   Scene s;
   s.path = path;
   s.name = j.string_or("name", fs::path(path).stem().string());
@@ -209,6 +209,13 @@ Scene load_scene(const std::string& path) {
     p.aspect_min = r->positive_or("aspect_min", p.aspect_min);
     if (p.aspect_min > 1) r->at("aspect_min").fail("must be at most 1");
     s.fixed_size = r->positive_or("fixed_size", 0.0);
+  }
+  if (auto c = j.find("collision")) {
+    c->only_keys({"thickness", "max_iterations"});
+    s.collision.thickness = c->positive_or("thickness", s.collision.thickness);
+    long long it = c->integer_or("max_iterations", s.collision.max_iterations);
+    if (it < 1 || it > 1000) c->at("max_iterations").fail("must be between 1 and 1000");
+    s.collision.max_iterations = static_cast<int>(it);
   }
   std::set<std::string> names;
   for (const JsonValue& g : j.at("garments").items()) {

@@ -8,6 +8,7 @@
 #include "physics/assembly.hpp"
 #include "physics/linear_solver.hpp"
 #include "physics/material.hpp"
+#include "collision/collider.hpp"
 #include "remesh/sizing.hpp"
 #include "scene/handle.hpp"
 
@@ -48,6 +49,7 @@ struct Scene {
   AirSpec air;
   SolverSpec solver;
   SizingParams remeshing;  // the `remeshing` block
+  CollisionParams collision;
   double fixed_size = 0;   // m: edge size of --mode fixed; 0 means remeshing.size_min
   std::vector<GarmentSpec> garments;
   std::vector<ObstacleSpec> obstacles;

@@ -60,6 +60,17 @@ void Simulation::rebuild() {
   LinearSolverParams solver_params = scene_.solver.params;
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
+  std::vector<CollisionMesh> obstacles;
+  obstacle_positions_.clear();
+  for (const auto& o : scene_.obstacles) {
+    CollisionMesh cm;
+    for (FaceId f : o.mesh.faces()) cm.faces.push_back({o.mesh.face_node(f, 0).idx, o.mesh.face_node(f, 1).idx, o.mesh.face_node(f, 2).idx});
+    std::vector<Vec3> xs(static_cast<std::size_t>(o.mesh.node_capacity()), Vec3::Zero());
+    for (NodeId n : o.mesh.nodes()) xs[static_cast<std::size_t>(n.idx)] = o.mesh.x(n);
+    obstacle_positions_.push_back(std::move(xs));
+    obstacles.push_back(std::move(cm));
+  }
+  collider_ = std::make_unique<Collider>(model_.face_nodes, std::move(obstacles), model_.num_nodes);
   gather_state();
 }
 
@@ -112,13 +123,16 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
   p.drag = scene_.air.drag;
   p.wind = scene_.air.wind;
   p.threads = options_.threads;
-  StepReport r = integrator_->step(x_, v_, constraints(t + h, h), p, scene_.solver.max_velocity_change);
+  const std::vector<VelocityConstraint> held = constraints(t + h, h);
+  const Eigen::VectorXd x_start = x_;
+  StepReport r = integrator_->step(x_, v_, held, p, scene_.solver.max_velocity_change);
   stats.assemble_seconds += r.assemble_seconds;
   stats.solve_seconds += r.solve_seconds;
   stats.solver_iterations += r.solver_iterations;
   stats.factorizations += r.factorizations;
   if (r.ok) {
     ++stats.substeps;
+    resolve_collisions(x_start, h, held, stats);
     return;
   }
   if (depth >= scene_.solver.max_step_halvings) {
@@ -135,6 +149,25 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
   }
   advance(t, h / 2, depth + 1, stats);
   advance(t + h / 2, h / 2, depth + 1, stats);
+}
+
+void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<VelocityConstraint>& held,
+                                    FrameStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
+  for (const auto& c : held) fixed[static_cast<std::size_t>(c.node)] = 1;
+  CollisionStats c = collider_->resolve(x_start, x_, model_.node_mass, fixed, obstacle_positions_, obstacle_positions_, scene_.collision);
+  v_ = (x_ - x_start) / h;
+  stats.impacts += c.impacts;
+  stats.collision_iterations += c.iterations;
+  stats.collision_fallbacks += c.fallbacks;
+  if (c.fallbacks > 0 && log_) {
+    std::ostringstream msg;
+    msg << "frame " << frame_ + 1 << ": " << c.fallbacks << " impact zone(s) did not separate in " << c.iterations
+        << " rounds; they keep their start-of-step positions";
+    log_(msg.str());
+  }
+  stats.collision_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 FrameStats Simulation::step_frame() {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "physics/cloth_model.hpp"
+#include "collision/collider.hpp"
 #include "physics/integrator.hpp"
 #include "scene/scene.hpp"
 
@@ -37,6 +38,8 @@ struct FrameStats {
   double assemble_seconds = 0, solve_seconds = 0;
   double remesh_seconds = 0;  // sizing, remeshing and rebuilding the system (adaptive mode)
   int splits = 0, flips = 0, collapses = 0;
+  int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
+  double collision_seconds = 0;
   EnergyReport energy;
 };
 
@@ -63,6 +66,8 @@ class Simulation {
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
   void advance(double t, double h, int depth, FrameStats& stats);
+  // Continuous collision handling of the step that just moved x_ from x_start; velocities follow.
+  void resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<VelocityConstraint>& held, FrameStats& stats);
 
   Scene scene_;
   SimOptions options_;
@@ -71,6 +76,8 @@ class Simulation {
   ClothModel model_;
   std::vector<int32_t> offsets_;  // first model node of each garment
   std::unique_ptr<ImplicitIntegrator> integrator_;
+  std::unique_ptr<Collider> collider_;
+  std::vector<std::vector<Vec3>> obstacle_positions_;  // obstacles are static for now
   Eigen::VectorXd x_, v_;
 };
 

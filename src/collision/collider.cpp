@@ -1,0 +1,245 @@
+// Collision handling: continuous detection plus impact zones (Bridson et al. 2002, section 7.4;
+// Harmon et al. 2008, section 4), iterated until no impact is left.
+#include "collision/collider.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <unordered_set>
+
+#include "collision/ccd.hpp"
+#include "collision/distance.hpp"
+#include "collision/impact_zone.hpp"
+
+namespace vdc {
+
+namespace {
+
+// Unique edges of a triangle list, and for each face the indices of its three edges.
+void edges_of(const std::vector<std::array<int32_t, 3>>& faces, std::vector<std::array<int32_t, 2>>& edges,
+              std::vector<std::array<int32_t, 3>>& face_edges) {
+  std::map<std::pair<int32_t, int32_t>, int32_t> index;
+  face_edges.resize(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      int32_t a = faces[f][static_cast<std::size_t>(i)], b = faces[f][static_cast<std::size_t>((i + 1) % 3)];
+      auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = index.find(key);
+      if (it == index.end()) {
+        it = index.emplace(key, static_cast<int32_t>(edges.size())).first;
+        edges.push_back({key.first, key.second});
+      }
+      face_edges[f][static_cast<std::size_t>(i)] = it->second;
+    }
+}
+
+// A point of the scene: a cloth node (obstacle < 0) or an obstacle vertex.
+struct PointRef {
+  int32_t obstacle;
+  int32_t index;
+};
+
+int32_t find(std::vector<int32_t>& parent, int32_t i) {
+  while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+  return i;
+}
+
+}  // namespace
+
+Collider::Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::vector<CollisionMesh> obstacles, int32_t num_nodes)
+    : cloth_faces_(cloth_faces), obstacles_(std::move(obstacles)), num_nodes_(num_nodes) {
+  edges_of(cloth_faces_, cloth_edges_, face_edges_);
+  obstacle_edges_.resize(obstacles_.size());
+  obstacle_face_edges_.resize(obstacles_.size());
+  for (std::size_t o = 0; o < obstacles_.size(); ++o) edges_of(obstacles_[o].faces, obstacle_edges_[o], obstacle_face_edges_[o]);
+}
+
+CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd& x_end, const std::vector<double>& mass,
+                                 const std::vector<char>& fixed, const std::vector<std::vector<Vec3>>& obstacle_start,
+                                 const std::vector<std::vector<Vec3>>& obstacle_end, const CollisionParams& params) {
+  CollisionStats stats;
+  const double eta = 1e-3 * params.thickness;
+  auto cloth_start = [&](int32_t i) { return Vec3(x_start.segment<3>(3 * i)); };
+  auto cloth_end = [&](int32_t i) { return Vec3(x_end.segment<3>(3 * i)); };
+  auto p0 = [&](const PointRef& p) {
+    return p.obstacle < 0 ? cloth_start(p.index) : obstacle_start[static_cast<std::size_t>(p.obstacle)][static_cast<std::size_t>(p.index)];
+  };
+  auto p1 = [&](const PointRef& p) {
+    return p.obstacle < 0 ? cloth_end(p.index) : obstacle_end[static_cast<std::size_t>(p.obstacle)][static_cast<std::size_t>(p.index)];
+  };
+  auto swept_box = [&](const std::array<PointRef, 3>& tri) {
+    Aabb b;
+    for (const PointRef& p : tri) {
+      b.grow(p0(p));
+      b.grow(p1(p));
+    }
+    b.pad(params.thickness);
+    return b;
+  };
+  auto cloth_tri = [&](std::size_t f) {
+    const auto& t = cloth_faces_[f];
+    return std::array<PointRef, 3>{PointRef{-1, t[0]}, PointRef{-1, t[1]}, PointRef{-1, t[2]}};
+  };
+  auto obstacle_tri = [&](std::size_t o, std::size_t f) {
+    const auto& t = obstacles_[o].faces[f];
+    const auto oi = static_cast<int32_t>(o);
+    return std::array<PointRef, 3>{PointRef{oi, t[0]}, PointRef{oi, t[1]}, PointRef{oi, t[2]}};
+  };
+
+  std::vector<std::unique_ptr<Bvh>> obstacle_bvh;
+  for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+    std::vector<Aabb> boxes;
+    for (std::size_t f = 0; f < obstacles_[o].faces.size(); ++f) boxes.push_back(swept_box(obstacle_tri(o, f)));
+    obstacle_bvh.push_back(std::make_unique<Bvh>(boxes));
+  }
+
+  std::vector<int32_t> parent(static_cast<std::size_t>(num_nodes_));
+  std::iota(parent.begin(), parent.end(), 0);
+  std::vector<ImpactConstraint> constraints;
+  std::vector<int32_t> constraint_anchor;  // a movable cloth node of each constraint
+  std::unique_ptr<Bvh> cloth_bvh;
+  bool clear = false;
+
+  for (int round = 0; round < params.max_iterations && !clear; ++round) {
+    ++stats.iterations;
+    std::vector<Aabb> boxes;
+    boxes.reserve(cloth_faces_.size());
+    for (std::size_t f = 0; f < cloth_faces_.size(); ++f) boxes.push_back(swept_box(cloth_tri(f)));
+    if (cloth_bvh) cloth_bvh->refit(boxes);
+    else cloth_bvh = std::make_unique<Bvh>(boxes);
+
+    std::unordered_set<uint64_t> seen;
+    std::vector<ImpactConstraint> found;
+    auto add_constraint = [&](std::array<PointRef, 4> pts, std::array<double, 4> w, Vec3 n) {
+      ImpactConstraint c;
+      c.weights = w;
+      c.normal = n;
+      for (int j = 0; j < 4; ++j) {
+        const auto ju = static_cast<std::size_t>(j);
+        const PointRef& p = pts[ju];
+        const bool movable = p.obstacle < 0 && !fixed[static_cast<std::size_t>(p.index)];
+        c.nodes[ju] = movable ? p.index : -1;
+        c.fixed[ju] = p1(p);
+      }
+      found.push_back(c);
+    };
+    auto vertex_face = [&](const PointRef& p, const std::array<PointRef, 3>& tri, uint64_t key) {
+      if (!seen.insert(key).second) return;
+      Impact hit = vertex_face_ccd(p0(p), p1(p), p0(tri[0]), p1(tri[0]), p0(tri[1]), p1(tri[1]), p0(tri[2]), p1(tri[2]), eta);
+      if (!hit.hit) return;
+      auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
+      Vec3 w = closest_triangle_weights(at(p), at(tri[0]), at(tri[1]), at(tri[2]));
+      Vec3 n = (at(tri[1]) - at(tri[0])).cross(at(tri[2]) - at(tri[0]));
+      if (n.squaredNorm() == 0) n = (p1(tri[1]) - p1(tri[0])).cross(p1(tri[2]) - p1(tri[0]));
+      if (n.squaredNorm() == 0) return;
+      n.normalize();
+      const Vec3 foot0 = w[0] * p0(tri[0]) + w[1] * p0(tri[1]) + w[2] * p0(tri[2]);
+      if (n.dot(p0(p) - foot0) < 0) n = -n;  // the side the vertex came from
+      add_constraint({p, tri[0], tri[1], tri[2]}, {1.0, -w[0], -w[1], -w[2]}, n);
+    };
+    auto edge_edge = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, uint64_t key) {
+      if (!seen.insert(key).second) return;
+      Impact hit = edge_edge_ccd(p0(a), p1(a), p0(b), p1(b), p0(c), p1(c), p0(d), p1(d), eta);
+      if (!hit.hit) return;
+      auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
+      Vec2 su = closest_segment_params(at(a), at(b), at(c), at(d));
+      const double s = su.x(), u = su.y();
+      auto sep0 = [&]() { return Vec3((1 - s) * p0(a) + s * p0(b) - (1 - u) * p0(c) - u * p0(d)); };
+      Vec3 n = (at(b) - at(a)).cross(at(d) - at(c));
+      if (n.squaredNorm() < 1e-20 * (at(b) - at(a)).squaredNorm() * (at(d) - at(c)).squaredNorm()) n = sep0();
+      if (n.squaredNorm() == 0) return;
+      n.normalize();
+      if (n.dot(sep0()) < 0) n = -n;
+      add_constraint({a, b, c, d}, {1 - s, s, -(1 - u), -u}, n);
+    };
+    auto key = [](uint64_t kind, uint64_t a, uint64_t b) { return (kind << 60) | (a << 30) | b; };
+
+    cloth_bvh->self_pairs([&](int32_t fa, int32_t fb) {
+      const auto &ta = cloth_faces_[static_cast<std::size_t>(fa)], &tb = cloth_faces_[static_cast<std::size_t>(fb)];
+      auto in = [](int32_t n, const std::array<int32_t, 3>& t) { return n == t[0] || n == t[1] || n == t[2]; };
+      for (int32_t n : ta)
+        if (!in(n, tb)) vertex_face({-1, n}, cloth_tri(static_cast<std::size_t>(fb)), key(0, static_cast<uint64_t>(n), static_cast<uint64_t>(fb)));
+      for (int32_t n : tb)
+        if (!in(n, ta)) vertex_face({-1, n}, cloth_tri(static_cast<std::size_t>(fa)), key(0, static_cast<uint64_t>(n), static_cast<uint64_t>(fa)));
+      for (int32_t ea : face_edges_[static_cast<std::size_t>(fa)])
+        for (int32_t eb : face_edges_[static_cast<std::size_t>(fb)]) {
+          const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = cloth_edges_[static_cast<std::size_t>(eb)];
+          if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) continue;
+          edge_edge({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]},
+                    key(1, static_cast<uint64_t>(std::min(ea, eb)), static_cast<uint64_t>(std::max(ea, eb))));
+        }
+    });
+    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+      const auto oi = static_cast<int32_t>(o);
+      const uint64_t okind = 2 + 3 * o;
+      cloth_bvh->pairs_with(*obstacle_bvh[o], [&](int32_t fa, int32_t fo) {
+        const auto tri_o = obstacle_tri(o, static_cast<std::size_t>(fo));
+        for (int32_t n : cloth_faces_[static_cast<std::size_t>(fa)]) vertex_face({-1, n}, tri_o, key(okind, static_cast<uint64_t>(n), static_cast<uint64_t>(fo)));
+        for (int32_t v : obstacles_[o].faces[static_cast<std::size_t>(fo)])
+          vertex_face({oi, v}, cloth_tri(static_cast<std::size_t>(fa)), key(okind + 1, static_cast<uint64_t>(v), static_cast<uint64_t>(fa)));
+        for (int32_t ea : face_edges_[static_cast<std::size_t>(fa)])
+          for (int32_t eo : obstacle_face_edges_[o][static_cast<std::size_t>(fo)]) {
+            const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
+            edge_edge({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, key(okind + 2, static_cast<uint64_t>(ea), static_cast<uint64_t>(eo)));
+          }
+      });
+    }
+
+    stats.impacts += static_cast<int>(found.size());
+    if (found.empty()) {
+      clear = true;
+      break;
+    }
+    // Merge the nodes of each new impact into one zone.
+    for (const auto& c : found) {
+      int32_t first = -1;
+      for (int32_t n : c.nodes) {
+        if (n < 0) continue;
+        if (first < 0) first = n;
+        else parent[static_cast<std::size_t>(find(parent, n))] = find(parent, first);
+      }
+      if (first < 0) continue;  // nothing movable: an impact between fixed points
+      constraints.push_back(c);
+      constraint_anchor.push_back(first);
+    }
+    // Project each zone with every constraint gathered for it so far.
+    std::map<int32_t, std::vector<std::size_t>> zones;
+    for (std::size_t i = 0; i < constraints.size(); ++i) zones[find(parent, constraint_anchor[i])].push_back(i);
+    for (const auto& [root, members] : zones) {
+      std::map<int32_t, int32_t> local;
+      std::vector<Vec3> xz;
+      std::vector<double> mz;
+      std::vector<ImpactConstraint> cz;
+      for (std::size_t i : members) {
+        ImpactConstraint c = constraints[i];
+        for (int32_t& n : c.nodes) {
+          if (n < 0) continue;
+          auto it = local.find(n);
+          if (it == local.end()) {
+            it = local.emplace(n, static_cast<int32_t>(xz.size())).first;
+            xz.push_back(cloth_end(n));
+            mz.push_back(mass[static_cast<std::size_t>(n)]);
+          }
+          n = it->second;
+        }
+        cz.push_back(c);
+      }
+      project_impact_zone(xz, mz, cz, params.thickness, 1e-3 * params.thickness);
+      for (const auto& [global, li] : local) x_end.segment<3>(3 * global) = xz[static_cast<std::size_t>(li)];
+    }
+  }
+  if (!clear) {
+    // Fallback: every zone still in contact goes back to where it started the step.
+    std::map<int32_t, std::vector<int32_t>> members;
+    for (std::size_t i = 0; i < constraints.size(); ++i)
+      for (int32_t n : constraints[i].nodes)
+        if (n >= 0) members[find(parent, n)].push_back(n);
+    for (const auto& [root, nodes] : members) {
+      for (int32_t n : nodes) x_end.segment<3>(3 * n) = x_start.segment<3>(3 * n);
+      ++stats.fallbacks;
+    }
+  }
+  return stats;
+}
+
+}  // namespace vdc

@@ -1,0 +1,47 @@
+// Triangle-triangle intersection by edge-triangle crossings (after Moller 1997).
+#include "collision/intersection.hpp"
+
+#include "core/bvh.hpp"
+
+namespace vdc {
+
+namespace {
+double orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).cross(c - a).dot(d - a); }
+}  // namespace
+
+bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double sp = orient(a, b, c, p), sq = orient(a, b, c, q);
+  if ((sp > 0 && sq > 0) || (sp < 0 && sq < 0) || (sp == 0 && sq == 0)) return false;
+  // The segment's line passes through the triangle when it sees the three edges turning the same way.
+  const double e0 = orient(p, q, a, b), e1 = orient(p, q, b, c), e2 = orient(p, q, c, a);
+  return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
+}
+
+bool triangles_intersect(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t) {
+  for (int i = 0; i < 3; ++i) {
+    const auto i0 = static_cast<std::size_t>(i), i1 = static_cast<std::size_t>((i + 1) % 3);
+    if (segment_crosses_triangle(s[i0], s[i1], t[0], t[1], t[2])) return true;
+    if (segment_crosses_triangle(t[i0], t[i1], s[0], s[1], s[2])) return true;
+  }
+  return false;
+}
+
+int count_self_intersections(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<Vec3>& x) {
+  std::vector<Aabb> boxes(faces.size());
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int32_t n : faces[f]) boxes[f].grow(x[static_cast<std::size_t>(n)]);
+  Bvh bvh(boxes);
+  int count = 0;
+  bvh.self_pairs([&](int32_t a, int32_t b) {
+    const auto &fa = faces[static_cast<std::size_t>(a)], &fb = faces[static_cast<std::size_t>(b)];
+    for (int32_t n : fa)
+      if (n == fb[0] || n == fb[1] || n == fb[2]) return;
+    auto tri = [&](const std::array<int32_t, 3>& f) {
+      return std::array<Vec3, 3>{x[static_cast<std::size_t>(f[0])], x[static_cast<std::size_t>(f[1])], x[static_cast<std::size_t>(f[2])]};
+    };
+    if (triangles_intersect(tri(fa), tri(fb))) ++count;
+  });
+  return count;
+}
+
+}  // namespace vdc

@@ -1,0 +1,19 @@
+// Static intersection tests used to check the result of collision handling: triangle-triangle
+// intersection by segment-triangle crossings (Moller 1997's case analysis reduced to its
+// crossing tests), in double precision with orientation signs taken strictly.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "core/math.hpp"
+
+namespace vdc {
+
+// True when segment [p, q] crosses the interior or boundary of triangle (a, b, c) transversally.
+bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
+// True when the triangles intersect (a transversal crossing of an edge of either through the other).
+bool triangles_intersect(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
+// Number of intersecting pairs of triangles that share no node.
+int count_self_intersections(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<Vec3>& x);
+
+}  // namespace vdc

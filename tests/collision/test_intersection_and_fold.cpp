@@ -1,0 +1,50 @@
+// The intersection check itself, then sheet-fold: a sheet dropped on the ground that folds onto
+// itself must end every frame with no cloth-cloth intersection and no vertex in the ground.
+#include <gtest/gtest.h>
+
+#include "collision/intersection.hpp"
+#include "scene/scene.hpp"
+#include "sim/simulation.hpp"
+
+namespace vdc {
+namespace {
+
+TEST(Intersection, CrossingAndSeparateTriangles) {
+  std::array<Vec3, 3> t{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  EXPECT_TRUE(triangles_intersect(t, {Vec3(0.2, 0.2, -1), Vec3(0.2, 0.2, 1), Vec3(2, 2, 0.5)}));
+  EXPECT_FALSE(triangles_intersect(t, {Vec3(0.2, 0.2, 0.1), Vec3(0.3, 0.2, 1), Vec3(2, 2, 0.5)}));
+  EXPECT_FALSE(triangles_intersect(t, {Vec3(2, 2, -1), Vec3(2, 2, 1), Vec3(3, 3, 0.5)}));
+  // Two triangles through each other edge-wise (a ring): each crosses the other.
+  EXPECT_TRUE(triangles_intersect(t, {Vec3(0.5, -0.5, 0.5), Vec3(0.5, 0.5, -0.5), Vec3(0.5, 1.5, 0.5)}));
+}
+
+TEST(SheetFold, NoIntersectionsAndNothingInTheGroundAtAnyFrameEnd) {
+  Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/sheet-fold.json");
+  const double thickness = scene.collision.thickness;
+  Simulation sim(std::move(scene), SimOptions{SimMode::Fixed, 1});
+  int impacts = 0, fallbacks = 0;
+  double lowest_top = 1e9;
+  for (int f = 0; f < 50; ++f) {
+    FrameStats s = sim.step_frame();
+    impacts += s.impacts;
+    fallbacks += s.collision_fallbacks;
+    const Mesh& m = sim.scene().garments[0].mesh;
+    std::vector<Vec3> x(static_cast<std::size_t>(m.node_capacity()));
+    std::vector<std::array<int32_t, 3>> faces;
+    double top = -1e9;
+    for (NodeId n : m.nodes()) {
+      x[static_cast<std::size_t>(n.idx)] = m.x(n);
+      ASSERT_GE(m.x(n).y(), -0.1 * thickness) << "frame " << s.frame << ": a vertex is in the ground";
+      top = std::max(top, m.x(n).y());
+    }
+    for (FaceId face : m.faces()) faces.push_back({m.face_node(face, 0).idx, m.face_node(face, 1).idx, m.face_node(face, 2).idx});
+    ASSERT_EQ(count_self_intersections(faces, x), 0) << "frame " << s.frame;
+    lowest_top = std::min(lowest_top, top);
+  }
+  EXPECT_GT(impacts, 1000);      // it did land and fold
+  EXPECT_LT(lowest_top, 0.2);    // the 1 m sheet ends up lying in folds, not standing
+  EXPECT_EQ(fallbacks, 0);
+}
+
+}  // namespace
+}  // namespace vdc
