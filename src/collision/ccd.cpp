@@ -58,14 +58,16 @@ std::vector<double> cubic_candidates(const std::array<double, 4>& k) {
 
 // Minimises a distance function over [0, 1] by sampling and golden-section refinement: the
 // fallback for motion that keeps the points coplanar throughout.
-void sampled_minima(const std::function<double(double)>& dist, std::vector<double>& out) {
+// `lipschitz` bounds |d'(t)|: a sample farther than lipschitz / 64 + eta from contact cannot
+// have a contact within half a sample spacing, so only closer local minima are refined.
+void sampled_minima(const std::function<double(double)>& dist, double lipschitz, double eta, std::vector<double>& out) {
   constexpr int kSamples = 64;
   std::vector<double> d(kSamples + 1);
   for (int i = 0; i <= kSamples; ++i) d[static_cast<std::size_t>(i)] = dist(static_cast<double>(i) / kSamples);
   for (int i = 0; i <= kSamples; ++i) {
     const double left = i > 0 ? d[static_cast<std::size_t>(i - 1)] : INFINITY, right = i < kSamples ? d[static_cast<std::size_t>(i + 1)] : INFINITY;
     const double here = d[static_cast<std::size_t>(i)];
-    if (here > left || here > right) continue;
+    if (here > left || here > right || here > lipschitz / kSamples + eta) continue;
     double lo = std::max(0.0, (i - 1.0) / kSamples), hi = std::min(1.0, (i + 1.0) / kSamples);
     const double g = 0.5 * (std::sqrt(5.0) - 1);
     for (int it = 0; it < 60; ++it) {
@@ -134,7 +136,7 @@ Impact vertex_face_ccd(const Vec3& p0, const Vec3& p1, const Vec3& a0, const Vec
     line_crossings(p0, dp, a0, da, b0, db, n, cand);
     line_crossings(p0, dp, b0, db, c0, dc, n, cand);
     line_crossings(p0, dp, c0, dc, a0, da, n, cand);
-    sampled_minima([&](double t) { return dist(at(t)); }, cand);
+    sampled_minima([&](double t) { return dist(at(t)); }, reach, eta, cand);
   }
   return earliest(cand, at, dist, eta);
 }
@@ -150,7 +152,7 @@ Impact edge_edge_ccd(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3&
   std::vector<double> cand = cubic_candidates(k);
   double scale = 0;
   for (const Vec3& v : {b0 - a0, d0 - c0, c0 - a0, db - da, dd - dc, dc - da}) scale = std::max(scale, v.norm());
-  if (nearly_degenerate(k, scale * scale * scale)) sampled_minima([&](double t) { return dist(at(t)); }, cand);
+  if (nearly_degenerate(k, scale * scale * scale)) sampled_minima([&](double t) { return dist(at(t)); }, reach, eta, cand);
   return earliest(cand, at, dist, eta);
 }
 

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
-#include <unordered_set>
 
 #include "collision/ccd.hpp"
 #include "collision/distance.hpp"
@@ -67,15 +66,6 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   auto p1 = [&](const PointRef& p) {
     return p.obstacle < 0 ? cloth_end(p.index) : obstacle_end[static_cast<std::size_t>(p.obstacle)][static_cast<std::size_t>(p.index)];
   };
-  auto swept_box = [&](const std::array<PointRef, 3>& tri) {
-    Aabb b;
-    for (const PointRef& p : tri) {
-      b.grow(p0(p));
-      b.grow(p1(p));
-    }
-    b.pad(params.thickness);
-    return b;
-  };
   auto cloth_tri = [&](std::size_t f) {
     const auto& t = cloth_faces_[f];
     return std::array<PointRef, 3>{PointRef{-1, t[0]}, PointRef{-1, t[1]}, PointRef{-1, t[2]}};
@@ -86,29 +76,51 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     return std::array<PointRef, 3>{PointRef{oi, t[0]}, PointRef{oi, t[1]}, PointRef{oi, t[2]}};
   };
 
-  std::vector<std::unique_ptr<Bvh>> obstacle_bvh;
+  // Swept boxes of the primitives, padded by the contact tolerance.
+  auto path_box = [&](std::initializer_list<PointRef> pts) {
+    Aabb b;
+    for (const PointRef& p : pts) {
+      b.grow(p0(p));
+      b.grow(p1(p));
+    }
+    b.pad(eta);
+    return b;
+  };
+  std::vector<std::unique_ptr<Bvh>> obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-    std::vector<Aabb> boxes;
-    for (std::size_t f = 0; f < obstacles_[o].faces.size(); ++f) boxes.push_back(swept_box(obstacle_tri(o, f)));
-    obstacle_bvh.push_back(std::make_unique<Bvh>(boxes));
+    const auto oi = static_cast<int32_t>(o);
+    std::vector<Aabb> faces, edges;
+    for (const auto& f : obstacles_[o].faces) faces.push_back(path_box({{oi, f[0]}, {oi, f[1]}, {oi, f[2]}}));
+    for (const auto& e : obstacle_edges_[o]) edges.push_back(path_box({{oi, e[0]}, {oi, e[1]}}));
+    obstacle_face_bvh.push_back(std::make_unique<Bvh>(faces));
+    obstacle_edge_bvh.push_back(std::make_unique<Bvh>(edges));
   }
+  std::vector<char> cloth_node_used(static_cast<std::size_t>(num_nodes_), 0);
+  for (const auto& f : cloth_faces_)
+    for (int32_t n : f) cloth_node_used[static_cast<std::size_t>(n)] = 1;
 
   std::vector<int32_t> parent(static_cast<std::size_t>(num_nodes_));
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<ImpactConstraint> constraints;
   std::vector<int32_t> constraint_anchor;  // a movable cloth node of each constraint
-  std::unique_ptr<Bvh> cloth_bvh;
+  std::unique_ptr<Bvh> face_bvh, edge_bvh;
   bool clear = false;
 
   for (int round = 0; round < params.max_iterations && !clear; ++round) {
     ++stats.iterations;
-    std::vector<Aabb> boxes;
-    boxes.reserve(cloth_faces_.size());
-    for (std::size_t f = 0; f < cloth_faces_.size(); ++f) boxes.push_back(swept_box(cloth_tri(f)));
-    if (cloth_bvh) cloth_bvh->refit(boxes);
-    else cloth_bvh = std::make_unique<Bvh>(boxes);
+    std::vector<Aabb> face_boxes, edge_boxes;
+    face_boxes.reserve(cloth_faces_.size());
+    edge_boxes.reserve(cloth_edges_.size());
+    for (const auto& f : cloth_faces_) face_boxes.push_back(path_box({{-1, f[0]}, {-1, f[1]}, {-1, f[2]}}));
+    for (const auto& e : cloth_edges_) edge_boxes.push_back(path_box({{-1, e[0]}, {-1, e[1]}}));
+    if (face_bvh) {
+      face_bvh->refit(face_boxes);
+      edge_bvh->refit(edge_boxes);
+    } else {
+      face_bvh = std::make_unique<Bvh>(face_boxes);
+      edge_bvh = std::make_unique<Bvh>(edge_boxes);
+    }
 
-    std::unordered_set<uint64_t> seen;
     std::vector<ImpactConstraint> found;
     auto add_constraint = [&](std::array<PointRef, 4> pts, std::array<double, 4> w, Vec3 n) {
       ImpactConstraint c;
@@ -123,8 +135,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       }
       found.push_back(c);
     };
-    auto vertex_face = [&](const PointRef& p, const std::array<PointRef, 3>& tri, uint64_t key) {
-      if (!seen.insert(key).second) return;
+    auto vertex_face = [&](const PointRef& p, const std::array<PointRef, 3>& tri) {
       Impact hit = vertex_face_ccd(p0(p), p1(p), p0(tri[0]), p1(tri[0]), p0(tri[1]), p1(tri[1]), p0(tri[2]), p1(tri[2]), eta);
       if (!hit.hit) return;
       auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
@@ -137,8 +148,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       if (n.dot(p0(p) - foot0) < 0) n = -n;  // the side the vertex came from
       add_constraint({p, tri[0], tri[1], tri[2]}, {1.0, -w[0], -w[1], -w[2]}, n);
     };
-    auto edge_edge = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, uint64_t key) {
-      if (!seen.insert(key).second) return;
+    auto edge_edge = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d) {
       Impact hit = edge_edge_ccd(p0(a), p1(a), p0(b), p1(b), p0(c), p1(c), p0(d), p1(d), eta);
       if (!hit.hit) return;
       auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
@@ -152,36 +162,36 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       if (n.dot(sep0()) < 0) n = -n;
       add_constraint({a, b, c, d}, {1 - s, s, -(1 - u), -u}, n);
     };
-    auto key = [](uint64_t kind, uint64_t a, uint64_t b) { return (kind << 60) | (a << 30) | b; };
 
-    cloth_bvh->self_pairs([&](int32_t fa, int32_t fb) {
-      const auto &ta = cloth_faces_[static_cast<std::size_t>(fa)], &tb = cloth_faces_[static_cast<std::size_t>(fb)];
-      auto in = [](int32_t n, const std::array<int32_t, 3>& t) { return n == t[0] || n == t[1] || n == t[2]; };
-      for (int32_t n : ta)
-        if (!in(n, tb)) vertex_face({-1, n}, cloth_tri(static_cast<std::size_t>(fb)), key(0, static_cast<uint64_t>(n), static_cast<uint64_t>(fb)));
-      for (int32_t n : tb)
-        if (!in(n, ta)) vertex_face({-1, n}, cloth_tri(static_cast<std::size_t>(fa)), key(0, static_cast<uint64_t>(n), static_cast<uint64_t>(fa)));
-      for (int32_t ea : face_edges_[static_cast<std::size_t>(fa)])
-        for (int32_t eb : face_edges_[static_cast<std::size_t>(fb)]) {
-          const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = cloth_edges_[static_cast<std::size_t>(eb)];
-          if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) continue;
-          edge_edge({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]},
-                    key(1, static_cast<uint64_t>(std::min(ea, eb)), static_cast<uint64_t>(std::max(ea, eb))));
-        }
+    // Cloth vertices against cloth and obstacle faces.
+    for (int32_t v = 0; v < num_nodes_; ++v) {
+      if (!cloth_node_used[static_cast<std::size_t>(v)]) continue;
+      const PointRef p{-1, v};
+      const Aabb box = path_box({p});
+      face_bvh->query(box, [&](int32_t f) {
+        const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
+        if (t[0] != v && t[1] != v && t[2] != v) vertex_face(p, cloth_tri(static_cast<std::size_t>(f)));
+      });
+      for (std::size_t o = 0; o < obstacles_.size(); ++o)
+        obstacle_face_bvh[o]->query(box, [&](int32_t f) { vertex_face(p, obstacle_tri(o, static_cast<std::size_t>(f))); });
+    }
+    // Obstacle vertices against cloth faces.
+    for (std::size_t o = 0; o < obstacles_.size(); ++o)
+      for (std::size_t v = 0; v < obstacle_start[o].size(); ++v) {
+        const PointRef p{static_cast<int32_t>(o), static_cast<int32_t>(v)};
+        face_bvh->query(path_box({p}), [&](int32_t f) { vertex_face(p, cloth_tri(static_cast<std::size_t>(f))); });
+      }
+    // Edges against edges.
+    edge_bvh->self_pairs([&](int32_t ea, int32_t eb) {
+      const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = cloth_edges_[static_cast<std::size_t>(eb)];
+      if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
+      edge_edge({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]});
     });
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
       const auto oi = static_cast<int32_t>(o);
-      const uint64_t okind = 2 + 3 * o;
-      cloth_bvh->pairs_with(*obstacle_bvh[o], [&](int32_t fa, int32_t fo) {
-        const auto tri_o = obstacle_tri(o, static_cast<std::size_t>(fo));
-        for (int32_t n : cloth_faces_[static_cast<std::size_t>(fa)]) vertex_face({-1, n}, tri_o, key(okind, static_cast<uint64_t>(n), static_cast<uint64_t>(fo)));
-        for (int32_t v : obstacles_[o].faces[static_cast<std::size_t>(fo)])
-          vertex_face({oi, v}, cloth_tri(static_cast<std::size_t>(fa)), key(okind + 1, static_cast<uint64_t>(v), static_cast<uint64_t>(fa)));
-        for (int32_t ea : face_edges_[static_cast<std::size_t>(fa)])
-          for (int32_t eo : obstacle_face_edges_[o][static_cast<std::size_t>(fo)]) {
-            const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
-            edge_edge({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, key(okind + 2, static_cast<uint64_t>(ea), static_cast<uint64_t>(eo)));
-          }
+      edge_bvh->pairs_with(*obstacle_edge_bvh[o], [&](int32_t ea, int32_t eo) {
+        const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
+        edge_edge({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]});
       });
     }
 
