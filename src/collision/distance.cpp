@@ -16,15 +16,8 @@ double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
 }
 
 double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double n2 = n.squaredNorm();
-  if (n2 > 0) {
-    // Inside the prism over the triangle: the distance to the plane.
-    const Vec3 q = p - (p - a).dot(n) / n2 * n;
-    const double u = (b - q).cross(c - q).dot(n), v = (c - q).cross(a - q).dot(n), w = (a - q).cross(b - q).dot(n);
-    if (u >= 0 && v >= 0 && w >= 0) return std::abs((p - a).dot(n)) / std::sqrt(n2);
-  }
-  return std::min({point_segment_distance(p, a, b), point_segment_distance(p, b, c), point_segment_distance(p, c, a)});
+  const Vec3 w = closest_triangle_weights(p, a, b, c);
+  return (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
 }
 
 double segment_segment_distance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
