@@ -152,4 +152,44 @@ MeshSource make_grid(double size_x, double size_y, int nx, int ny) {
   return src;
 }
 
+void with_canonical_uvs(MeshSource& src) {
+  src.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+  for (auto& f : src.faces)
+    for (int k = 0; k < 3; ++k) f[static_cast<std::size_t>(k)].uv = k;
+}
+
+MeshSource make_icosphere(double radius, int subdivisions) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> p = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<std::array<int32_t, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                           {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                                           {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (auto& v : p) v.normalize();
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<int32_t, int32_t>, int32_t> mid;
+    auto midpoint = [&](int32_t a, int32_t b) {
+      auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      p.push_back((p[static_cast<std::size_t>(a)] + p[static_cast<std::size_t>(b)]).normalized());
+      return mid[key] = static_cast<int32_t>(p.size() - 1);
+    };
+    std::vector<std::array<int32_t, 3>> next;
+    for (const auto& t : f) {
+      int32_t ab = midpoint(t[0], t[1]), bc = midpoint(t[1], t[2]), ca = midpoint(t[2], t[0]);
+      next.push_back({t[0], ab, ca});
+      next.push_back({t[1], bc, ab});
+      next.push_back({t[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    f = std::move(next);
+  }
+  MeshSource src;
+  for (const auto& v : p) src.positions.push_back(radius * v);
+  for (const auto& t : f) src.faces.push_back({Corner{t[0], 0}, Corner{t[1], 0}, Corner{t[2], 0}});
+  with_canonical_uvs(src);
+  return src;
+}
+
 }  // namespace vdc

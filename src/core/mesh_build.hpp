@@ -41,4 +41,13 @@ MeshSource mesh_source(const Mesh& mesh);
 // (u, 0, -v), so the outer side faces +y.
 MeshSource make_grid(double size_x, double size_y, int nx, int ny);
 
+// A closed sphere of the given radius centred at the origin: an icosahedron subdivided
+// `subdivisions` times, outward-facing. Obstacles have no pattern: every face gets the same
+// canonical material triangle (see with_canonical_uvs).
+MeshSource make_icosphere(double radius, int subdivisions);
+
+// Replaces the uvs of a mesh that has no material space (an obstacle) by one canonical
+// counter-clockwise triangle per face, which every check of build_mesh accepts.
+void with_canonical_uvs(MeshSource& src);
+
 }  // namespace vdc

@@ -45,7 +45,6 @@ MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector
   std::vector<int> lines;
   std::string raw;
   int line = 0;
-  bool any_uv_missing = false;
   while (std::getline(in, raw)) {
     ++line;
     if (auto hash = raw.find('#'); hash != std::string::npos) raw.resize(hash);
@@ -72,10 +71,7 @@ MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector
           auto uvtok = rest.substr(0, slash2);
           if (!uvtok.empty()) c.uv = parse_index(uvtok, src.uvs.size(), "texture", path, line);
         }
-        if (c.uv < 0) {
-          if (require_uv) throw InputError(path, line_place(line), "face corner '" + t + "' has no material-space (vt) index");
-          any_uv_missing = true;
-        }
+        if (c.uv < 0 && require_uv) throw InputError(path, line_place(line), "face corner '" + t + "' has no material-space (vt) index");
         corners.push_back(c);
       }
       // Polygons are split into a fan of triangles.
@@ -88,13 +84,7 @@ MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector
   }
   if (in.bad()) throw InputError(path, "", "read error");
   if (src.faces.empty()) throw InputError(path, "", "no faces");
-  if (any_uv_missing) {
-    // Obstacles without vt: each corner takes its position's world (x, -z) as material coordinates.
-    src.uvs.clear();
-    for (const Vec3& p : src.positions) src.uvs.emplace_back(p.x(), -p.z());
-    for (auto& f : src.faces)
-      for (auto& c : f) c.uv = c.node;
-  }
+  if (!require_uv) with_canonical_uvs(src);  // obstacles have no pattern: vt, if any, is ignored
   if (face_lines) *face_lines = std::move(lines);
   return src;
 }

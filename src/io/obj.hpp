@@ -9,8 +9,8 @@
 namespace vdc {
 
 // Reads the arrays of an OBJ file. Throws InputError naming the file and line.
-// When `require_uv` is false, faces without `vt` get their world (x, z) as material coordinates,
-// which is what obstacles need; garments must have `vt`.
+// When `require_uv` is false (obstacles), `vt` is optional and ignored: every face gets the same
+// canonical material triangle. Garments must have `vt`.
 MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector<int>* face_lines = nullptr);
 
 // Reads and validates a garment mesh. Throws InputError naming the file, the line and the problem.

@@ -10,6 +10,7 @@
 #include "io/obj.hpp"
 #include "physics/cloth_model.hpp"
 #include "scene/transform.hpp"
+#include "scene/track.hpp"
 
 namespace vdc {
 
@@ -36,6 +37,18 @@ auto with_key(const JsonValue& j, F&& load) {
   }
 }
 
+// Keyframes [{"time": t, "<name>": [x, y, z]}, ...] with increasing times.
+Vec3Track parse_track(const JsonValue& list, const char* name) {
+  Vec3Track track;
+  for (const JsonValue& k : list.items()) {
+    k.only_keys({"time", name});
+    Vec3Key key{k.at("time").non_negative(), k.at(name).vec3()};
+    if (!track.keys.empty() && !(key.time > track.keys.back().time)) k.at("time").fail("keyframe times must increase");
+    track.keys.push_back(key);
+  }
+  return track;
+}
+
 Transform parse_transform(const JsonValue& j) {
   j.only_keys({"scale", "rotate", "translate"});
   Transform t;
@@ -50,7 +63,14 @@ Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment)
     std::string file = resolve(j, scene_path);
     return with_key(j, [&] { return read_obj(file, garment); });
   }
-  j.only_keys({"grid"});
+  j.only_keys({"grid", "sphere"});
+  if (auto sp = j.find("sphere")) {
+    if (garment) sp->fail("a garment cannot be a sphere (it needs a pattern)");
+    sp->only_keys({"radius", "subdivisions"});
+    long long sub = sp->integer_or("subdivisions", 3);
+    if (sub < 0 || sub > 6) sp->at("subdivisions").fail("must be between 0 and 6");
+    return build_mesh(make_icosphere(sp->at("radius").positive(), static_cast<int>(sub)));
+  }
   JsonValue g = j.at("grid");
   g.only_keys({"size", "cells"});
   Vec2 size = g.at("size").vec2();
@@ -94,14 +114,7 @@ void parse_handles(const JsonValue& list, GarmentSpec& g) {
     h.only_keys({"nodes", "points", "uv", "release", "path"});
     ClothHandle handle;
     handle.release = h.has("release") ? h.at("release").non_negative() : std::numeric_limits<double>::infinity();
-    if (auto path = h.find("path")) {
-      for (const JsonValue& k : path->items()) {
-        k.only_keys({"time", "offset"});
-        Keyframe key{k.at("time").non_negative(), k.at("offset").vec3()};
-        if (!handle.path.empty() && !(key.time > handle.path.back().time)) k.at("time").fail("keyframe times must increase");
-        handle.path.push_back(key);
-      }
-    }
+    if (auto path = h.find("path")) handle.path = parse_track(*path, "offset");
     std::vector<NodeId> nodes;
     if (auto ids = h.find("nodes"))
       for (const JsonValue& id : ids->items()) {
@@ -146,13 +159,25 @@ GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
 }
 
 ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path) {
-  j.only_keys({"name", "mesh", "transform"});
+  j.only_keys({"name", "mesh", "transform", "motion"});
   ObstacleSpec o;
   o.name = j.at("name").string();
   o.mesh = parse_mesh(j.at("mesh"), scene_path, false);
   if (auto t = j.find("transform")) {
     Transform tr = parse_transform(*t);
     for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = tr.apply(o.mesh.x(n));
+  }
+  o.rest.resize(static_cast<std::size_t>(o.mesh.node_capacity()));
+  Vec3 centre = Vec3::Zero();
+  for (NodeId n : o.mesh.nodes()) {
+    o.rest[static_cast<std::size_t>(n.idx)] = o.mesh.x(n);
+    centre += o.mesh.x(n);
+  }
+  o.pivot = centre / std::max(1, o.mesh.num_nodes());
+  if (auto m = j.find("motion")) {
+    m->only_keys({"translate", "rotate"});
+    if (auto tr = m->find("translate")) o.translate = parse_track(*tr, "offset");
+    if (auto ro = m->find("rotate")) o.rotate = parse_track(*ro, "degrees");
   }
   return o;
 }
@@ -229,6 +254,20 @@ Scene load_scene(const std::string& path) {
       check_name(o.at("name"), s.obstacles.back().name, names);
     }
   return s;
+}
+
+}  // namespace vdc
+
+namespace vdc {
+
+std::vector<Vec3> ObstacleSpec::positions_at(double t) const {
+  Transform motion;
+  motion.rotate_degrees = rotate.at(t);
+  const Mat3 r = motion.rotation();
+  const Vec3 offset = translate.at(t);
+  std::vector<Vec3> out(rest.size());
+  for (std::size_t i = 0; i < rest.size(); ++i) out[i] = r * (rest[i] - pivot) + pivot + offset;
+  return out;
 }
 
 }  // namespace vdc

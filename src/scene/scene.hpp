@@ -11,6 +11,7 @@
 #include "collision/collider.hpp"
 #include "remesh/sizing.hpp"
 #include "scene/handle.hpp"
+#include "scene/track.hpp"
 
 namespace vdc {
 
@@ -21,9 +22,17 @@ struct GarmentSpec {
   std::vector<ClothHandle> handles;
 };
 
+// An obstacle: a mesh placed by its transform, then moved rigidly over time by its motion:
+// x(t) = R(rotate(t)) (x_placed - pivot) + pivot + translate(t), pivot the placed centroid.
 struct ObstacleSpec {
   std::string name;
-  Mesh mesh;  // placed in world space
+  Mesh mesh;               // world positions at the current time
+  std::vector<Vec3> rest;  // placed positions, by node index
+  Vec3 pivot = Vec3::Zero();
+  Vec3Track translate;     // offsets, m
+  Vec3Track rotate;        // degrees about X, then Y, then Z
+  bool moves() const { return !translate.empty() || !rotate.empty(); }
+  std::vector<Vec3> positions_at(double t) const;
 };
 
 struct AirSpec {

@@ -61,13 +61,9 @@ void Simulation::rebuild() {
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
   std::vector<CollisionMesh> obstacles;
-  obstacle_positions_.clear();
   for (const auto& o : scene_.obstacles) {
     CollisionMesh cm;
     for (FaceId f : o.mesh.faces()) cm.faces.push_back({o.mesh.face_node(f, 0).idx, o.mesh.face_node(f, 1).idx, o.mesh.face_node(f, 2).idx});
-    std::vector<Vec3> xs(static_cast<std::size_t>(o.mesh.node_capacity()), Vec3::Zero());
-    for (NodeId n : o.mesh.nodes()) xs[static_cast<std::size_t>(n.idx)] = o.mesh.x(n);
-    obstacle_positions_.push_back(std::move(xs));
     obstacles.push_back(std::move(cm));
   }
   collider_ = std::make_unique<Collider>(model_.face_nodes, std::move(obstacles), model_.num_nodes);
@@ -132,7 +128,7 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
   stats.factorizations += r.factorizations;
   if (r.ok) {
     ++stats.substeps;
-    resolve_collisions(x_start, h, held, stats);
+    resolve_collisions(x_start, t, h, held, stats);
     return;
   }
   if (depth >= scene_.solver.max_step_halvings) {
@@ -151,12 +147,17 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
   advance(t + h / 2, h / 2, depth + 1, stats);
 }
 
-void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<VelocityConstraint>& held,
+void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double t, double h, const std::vector<VelocityConstraint>& held,
                                     FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
   for (const auto& c : held) fixed[static_cast<std::size_t>(c.node)] = 1;
-  CollisionStats c = collider_->resolve(x_start, x_, model_.node_mass, fixed, obstacle_positions_, obstacle_positions_, scene_.collision);
+  std::vector<std::vector<Vec3>> obstacles_start, obstacles_end;
+  for (const auto& o : scene_.obstacles) {
+    obstacles_start.push_back(o.positions_at(t));
+    obstacles_end.push_back(o.positions_at(t + h));
+  }
+  CollisionStats c = collider_->resolve(x_start, x_, model_.node_mass, fixed, obstacles_start, obstacles_end, scene_.collision);
   v_ = (x_ - x_start) / h;
   stats.impacts += c.impacts;
   stats.collision_iterations += c.iterations;
@@ -179,6 +180,11 @@ FrameStats Simulation::step_frame() {
   for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
   ++frame_;
   scatter_state();
+  for (auto& o : scene_.obstacles)
+    if (o.moves()) {
+      const std::vector<Vec3> x = o.positions_at(time());
+      for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[static_cast<std::size_t>(n.idx)];
+    }
   stats.frame = frame_;
   stats.faces = num_faces();
   stats.vertices = num_vertices();

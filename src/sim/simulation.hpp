@@ -67,7 +67,7 @@ class Simulation {
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
   void advance(double t, double h, int depth, FrameStats& stats);
   // Continuous collision handling of the step that just moved x_ from x_start; velocities follow.
-  void resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<VelocityConstraint>& held, FrameStats& stats);
+  void resolve_collisions(const Eigen::VectorXd& x_start, double t, double h, const std::vector<VelocityConstraint>& held, FrameStats& stats);
 
   Scene scene_;
   SimOptions options_;
@@ -77,7 +77,6 @@ class Simulation {
   std::vector<int32_t> offsets_;  // first model node of each garment
   std::unique_ptr<ImplicitIntegrator> integrator_;
   std::unique_ptr<Collider> collider_;
-  std::vector<std::vector<Vec3>> obstacle_positions_;  // obstacles are static for now
   Eigen::VectorXd x_, v_;
 };
 

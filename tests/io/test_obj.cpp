@@ -270,15 +270,26 @@ TEST(ObjErrors, MissingFile) {
 }
 
 TEST(ObjErrors, MissingVtIsFineForObstacles) {
-  // Without require_uv, every corner takes its position's world (x, -z) as material coordinates.
+  // Without require_uv (obstacles), vt is ignored: corner k of every face takes the k-th corner
+  // of one canonical counter-clockwise material triangle.
   Mesh m = read_obj(data_path("missing_vt.obj"), false);
   EXPECT_TRUE(m.validate().ok()) << m.validate().summary();
   EXPECT_EQ(m.num_nodes(), 4);
-  EXPECT_EQ(m.num_verts(), 4);
   EXPECT_EQ(m.num_faces(), 2);
-  for (VertId v : m.verts()) {
-    const Vec3& x = m.x(m.vert_node(v));
-    EXPECT_EQ(m.u(v), Vec2(x.x(), -x.z()));
+  const std::array<Vec2, 3> canonical{Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)};
+  for (FaceId f : m.faces())
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(m.u(m.face_vert(f, k)), canonical[static_cast<std::size_t>(k)]);
+}
+
+TEST(ObjErrors, IcosphereIsAClosedOutwardMesh) {
+  Mesh m = build_mesh(make_icosphere(0.1, 2));
+  ASSERT_TRUE(m.validate().ok()) << m.validate().summary();
+  EXPECT_EQ(m.num_faces(), 20 * 16);
+  EXPECT_EQ(m.num_nodes() - m.num_edges() + m.num_faces(), 2);  // Euler characteristic of a sphere
+  for (EdgeId e : m.edges()) EXPECT_FALSE(m.is_boundary(e));
+  for (FaceId f : m.faces()) {
+    Vec3 centre = (m.x(m.face_node(f, 0)) + m.x(m.face_node(f, 1)) + m.x(m.face_node(f, 2))) / 3;
+    EXPECT_GT(m.world_normal(f).dot(centre), 0);  // outward
   }
 }
 
