@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include "collision/ccd.hpp"
 #include "collision/distance.hpp"
@@ -104,6 +105,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   std::vector<ImpactConstraint> constraints;
   std::vector<int32_t> constraint_anchor;  // a movable cloth node of each constraint
   std::unique_ptr<Bvh> face_bvh, edge_bvh;
+  std::vector<char> moved(static_cast<std::size_t>(num_nodes_), 1);
   bool clear = false;
 
   for (int round = 0; round < params.max_iterations && !clear; ++round) {
@@ -121,8 +123,20 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       edge_bvh = std::make_unique<Bvh>(edge_boxes);
     }
 
-    std::vector<ImpactConstraint> found;
-    auto add_constraint = [&](std::array<PointRef, 4> pts, std::array<double, 4> w, Vec3 n) {
+    // Candidate tests are gathered serially from the hierarchies, then run in parallel; each
+    // writes only its own result slot, and results are taken in gathering order.
+    struct Candidate {
+      bool vertex_face;
+      std::array<PointRef, 4> pts;
+    };
+    std::vector<Candidate> candidates;
+    auto wanted = [&](std::initializer_list<PointRef> pts) {
+      if (round == 0) return true;  // later rounds: only pairs a projection has moved
+      for (const PointRef& p : pts)
+        if (p.obstacle < 0 && moved[static_cast<std::size_t>(p.index)]) return true;
+      return false;
+    };
+    auto add_constraint = [&](std::array<PointRef, 4> pts, std::array<double, 4> w, Vec3 n, std::optional<ImpactConstraint>& out) {
       ImpactConstraint c;
       c.weights = w;
       c.normal = n;
@@ -133,9 +147,9 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
         c.nodes[ju] = movable ? p.index : -1;
         c.fixed[ju] = p1(p);
       }
-      found.push_back(c);
+      out = c;
     };
-    auto vertex_face = [&](const PointRef& p, const std::array<PointRef, 3>& tri) {
+    auto vertex_face = [&](const PointRef& p, const std::array<PointRef, 3>& tri, std::optional<ImpactConstraint>& out) {
       Impact hit = vertex_face_ccd(p0(p), p1(p), p0(tri[0]), p1(tri[0]), p0(tri[1]), p1(tri[1]), p0(tri[2]), p1(tri[2]), eta);
       if (!hit.hit) return;
       auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
@@ -146,9 +160,9 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       n.normalize();
       const Vec3 foot0 = w[0] * p0(tri[0]) + w[1] * p0(tri[1]) + w[2] * p0(tri[2]);
       if (n.dot(p0(p) - foot0) < 0) n = -n;  // the side the vertex came from
-      add_constraint({p, tri[0], tri[1], tri[2]}, {1.0, -w[0], -w[1], -w[2]}, n);
+      add_constraint({p, tri[0], tri[1], tri[2]}, {1.0, -w[0], -w[1], -w[2]}, n, out);
     };
-    auto edge_edge = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d) {
+    auto edge_edge = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, std::optional<ImpactConstraint>& out) {
       Impact hit = edge_edge_ccd(p0(a), p1(a), p0(b), p1(b), p0(c), p1(c), p0(d), p1(d), eta);
       if (!hit.hit) return;
       auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
@@ -160,7 +174,13 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       if (n.squaredNorm() == 0) return;
       n.normalize();
       if (n.dot(sep0()) < 0) n = -n;
-      add_constraint({a, b, c, d}, {1 - s, s, -(1 - u), -u}, n);
+      add_constraint({a, b, c, d}, {1 - s, s, -(1 - u), -u}, n, out);
+    };
+    auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri) {
+      if (wanted({p, tri[0], tri[1], tri[2]})) candidates.push_back({true, {p, tri[0], tri[1], tri[2]}});
+    };
+    auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d) {
+      if (wanted({a, b, c, d})) candidates.push_back({false, {a, b, c, d}});
     };
 
     // Cloth vertices against cloth and obstacle faces.
@@ -170,30 +190,41 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const Aabb box = path_box({p});
       face_bvh->query(box, [&](int32_t f) {
         const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
-        if (t[0] != v && t[1] != v && t[2] != v) vertex_face(p, cloth_tri(static_cast<std::size_t>(f)));
+        if (t[0] != v && t[1] != v && t[2] != v) vf(p, cloth_tri(static_cast<std::size_t>(f)));
       });
       for (std::size_t o = 0; o < obstacles_.size(); ++o)
-        obstacle_face_bvh[o]->query(box, [&](int32_t f) { vertex_face(p, obstacle_tri(o, static_cast<std::size_t>(f))); });
+        obstacle_face_bvh[o]->query(box, [&](int32_t f) { vf(p, obstacle_tri(o, static_cast<std::size_t>(f))); });
     }
     // Obstacle vertices against cloth faces.
     for (std::size_t o = 0; o < obstacles_.size(); ++o)
       for (std::size_t v = 0; v < obstacle_start[o].size(); ++v) {
         const PointRef p{static_cast<int32_t>(o), static_cast<int32_t>(v)};
-        face_bvh->query(path_box({p}), [&](int32_t f) { vertex_face(p, cloth_tri(static_cast<std::size_t>(f))); });
+        face_bvh->query(path_box({p}), [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f))); });
       }
     // Edges against edges.
     edge_bvh->self_pairs([&](int32_t ea, int32_t eb) {
       const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = cloth_edges_[static_cast<std::size_t>(eb)];
       if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
-      edge_edge({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]});
+      ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]});
     });
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
       const auto oi = static_cast<int32_t>(o);
       edge_bvh->pairs_with(*obstacle_edge_bvh[o], [&](int32_t ea, int32_t eo) {
         const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
-        edge_edge({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]});
+        ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]});
       });
     }
+
+    std::vector<std::optional<ImpactConstraint>> results(candidates.size());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(params.threads)
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const Candidate& c = candidates[i];
+      if (c.vertex_face) vertex_face(c.pts[0], {c.pts[1], c.pts[2], c.pts[3]}, results[i]);
+      else edge_edge(c.pts[0], c.pts[1], c.pts[2], c.pts[3], results[i]);
+    }
+    std::vector<ImpactConstraint> found;
+    for (auto& r : results)
+      if (r) found.push_back(*r);
 
     stats.impacts += static_cast<int>(found.size());
     if (found.empty()) {
@@ -213,6 +244,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       constraint_anchor.push_back(first);
     }
     // Project each zone with every constraint gathered for it so far.
+    std::fill(moved.begin(), moved.end(), 0);
     std::map<int32_t, std::vector<std::size_t>> zones;
     for (std::size_t i = 0; i < constraints.size(); ++i) zones[find(parent, constraint_anchor[i])].push_back(i);
     for (const auto& [root, members] : zones) {
@@ -235,7 +267,11 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
         cz.push_back(c);
       }
       project_impact_zone(xz, mz, cz, params.thickness, 1e-3 * params.thickness);
-      for (const auto& [global, li] : local) x_end.segment<3>(3 * global) = xz[static_cast<std::size_t>(li)];
+      for (const auto& [global, li] : local) {
+        const Vec3& moved_to = xz[static_cast<std::size_t>(li)];
+        if (moved_to != cloth_end(global)) moved[static_cast<std::size_t>(global)] = 1;
+        x_end.segment<3>(3 * global) = moved_to;
+      }
     }
   }
   if (!clear) {

@@ -18,6 +18,7 @@ namespace vdc {
 struct CollisionParams {
   double thickness = 0.002;  // m: impacts are projected to at least this separation
   int max_iterations = 20;   // detection-projection rounds before the fallback
+  int threads = 1;           // for the detection tests (set by the simulation, not the scene)
 };
 
 struct CollisionStats {

@@ -157,7 +157,9 @@ void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double t, do
     obstacles_start.push_back(o.positions_at(t));
     obstacles_end.push_back(o.positions_at(t + h));
   }
-  CollisionStats c = collider_->resolve(x_start, x_, model_.node_mass, fixed, obstacles_start, obstacles_end, scene_.collision);
+  CollisionParams params = scene_.collision;
+  params.threads = options_.threads;
+  CollisionStats c = collider_->resolve(x_start, x_, model_.node_mass, fixed, obstacles_start, obstacles_end, params);
   v_ = (x_ - x_start) / h;
   stats.impacts += c.impacts;
   stats.collision_iterations += c.iterations;
