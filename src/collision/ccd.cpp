@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <vector>
 
 #include "collision/distance.hpp"
@@ -95,8 +96,10 @@ Impact earliest(const std::vector<double>& candidates, const Points& at, const D
 // The cubic is so small over the whole step that its roots are not to be trusted (coplanar or
 // nearly coplanar motion, parallel or nearly parallel edges): relative to the size of the
 // vectors involved, below 1e-6.
-bool nearly_degenerate(const std::array<double, 4>& k, double scale) {
-  return std::abs(k[0]) + std::abs(k[1]) + std::abs(k[2]) + std::abs(k[3]) <= 1e-6 * scale;
+bool nearly_degenerate(const std::array<double, 4>& k, std::initializer_list<Vec3> vectors) {
+  double scale = 0;
+  for (const Vec3& v : vectors) scale = std::max(scale, v.norm());
+  return std::abs(k[0]) + std::abs(k[1]) + std::abs(k[2]) + std::abs(k[3]) <= 1e-6 * scale * scale * scale;
 }
 
 // Times at which point p crosses the line through a and b, in the plane with normal n (fixed).
@@ -127,9 +130,7 @@ Impact vertex_face_ccd(const Vec3& p0, const Vec3& p1, const Vec3& a0, const Vec
   auto at = [&](double t) { return std::array<Vec3, 4>{p0 + t * dp, a0 + t * da, b0 + t * db, c0 + t * dc}; };
   auto dist = [](const std::array<Vec3, 4>& q) { return point_triangle_distance(q[0], q[1], q[2], q[3]); };
   std::vector<double> cand = cubic_candidates(k);
-  double scale = 0;
-  for (const Vec3& v : {b0 - a0, c0 - a0, p0 - a0, db - da, dc - da, dp - da}) scale = std::max(scale, v.norm());
-  if (nearly_degenerate(k, scale * scale * scale)) {
+  if (nearly_degenerate(k, {b0 - a0, c0 - a0, p0 - a0, db - da, dc - da, dp - da})) {
     // Coplanar motion: the point can only enter the triangle across an edge line.
     Vec3 n = (b0 - a0).cross(c0 - a0);
     if (n.squaredNorm() == 0) n = (b1 - a1).cross(c1 - a1);
@@ -150,9 +151,7 @@ Impact edge_edge_ccd(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3&
   auto at = [&](double t) { return std::array<Vec3, 4>{a0 + t * da, b0 + t * db, c0 + t * dc, d0 + t * dd}; };
   auto dist = [](const std::array<Vec3, 4>& q) { return segment_segment_distance(q[0], q[1], q[2], q[3]); };
   std::vector<double> cand = cubic_candidates(k);
-  double scale = 0;
-  for (const Vec3& v : {b0 - a0, d0 - c0, c0 - a0, db - da, dd - dc, dc - da}) scale = std::max(scale, v.norm());
-  if (nearly_degenerate(k, scale * scale * scale)) sampled_minima([&](double t) { return dist(at(t)); }, reach, eta, cand);
+  if (nearly_degenerate(k, {b0 - a0, d0 - c0, c0 - a0, db - da, dd - dc, dc - da})) sampled_minima([&](double t) { return dist(at(t)); }, reach, eta, cand);
   return earliest(cand, at, dist, eta);
 }
 

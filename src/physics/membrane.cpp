@@ -75,13 +75,20 @@ double membrane_energy(const TriStencil& x, const MembraneElement& m) {
   return m.area * energy_density(green_strain(deformation_gradient(x, m)), m.k);
 }
 
-VecN<9> membrane_gradient(const TriStencil& x, const MembraneElement& m) {
-  Mat32 f = deformation_gradient(x, m);
-  Mat32 p = f * membrane_stress(green_strain(f), m.k);
-  auto g = shape_gradients(m);
+namespace {
+// Gradient of A psi: node a gets A P g_a with P = F S the first Piola-Kirchhoff stress.
+VecN<9> nodal_gradient(const Mat32& f, const Mat2& s, const MembraneElement& m) {
+  const Mat32 p = f * s;
+  const auto g = shape_gradients(m);
   VecN<9> out;
   for (int a = 0; a < 3; ++a) out.segment<3>(3 * a) = m.area * p * g[static_cast<std::size_t>(a)];
   return out;
+}
+}  // namespace
+
+VecN<9> membrane_gradient(const TriStencil& x, const MembraneElement& m) {
+  const Mat32 f = deformation_gradient(x, m);
+  return nodal_gradient(f, membrane_stress(green_strain(f), m.k), m);
 }
 
 MatN<9> membrane_hessian(const TriStencil& x, const MembraneElement& m) {
@@ -100,9 +107,7 @@ MembraneEval membrane_eval(const TriStencil& x, const MembraneElement& m) {
   Mat2 s = membrane_stress(e, m.k);
   MembraneEval r;
   r.energy = m.area * energy_density(e, m.k);
-  Mat32 p = f * s;
-  auto g = shape_gradients(m);
-  for (int a = 0; a < 3; ++a) r.gradient.segment<3>(3 * a) = m.area * p * g[static_cast<std::size_t>(a)];
+  r.gradient = nodal_gradient(f, s, m);
   r.hessian = hessian_with(f, clamp_negative(s), m);
   return r;
 }
