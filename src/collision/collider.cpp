@@ -52,6 +52,8 @@ Collider::Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::
   obstacle_edges_.resize(obstacles_.size());
   obstacle_face_edges_.resize(obstacles_.size());
   for (std::size_t o = 0; o < obstacles_.size(); ++o) edges_of(obstacles_[o].faces, obstacle_edges_[o], obstacle_face_edges_[o]);
+  obstacle_face_tree_.resize(obstacles_.size());
+  obstacle_edge_tree_.resize(obstacles_.size());
 }
 
 CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd& x_end, const std::vector<double>& mass,
@@ -87,14 +89,14 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     b.pad(eta);
     return b;
   };
-  std::vector<std::unique_ptr<Bvh>> obstacle_face_bvh, obstacle_edge_bvh;
+  std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
     const auto oi = static_cast<int32_t>(o);
     std::vector<Aabb> faces, edges;
     for (const auto& f : obstacles_[o].faces) faces.push_back(path_box({{oi, f[0]}, {oi, f[1]}, {oi, f[2]}}));
     for (const auto& e : obstacle_edges_[o]) edges.push_back(path_box({{oi, e[0]}, {oi, e[1]}}));
-    obstacle_face_bvh.push_back(std::make_unique<Bvh>(faces));
-    obstacle_edge_bvh.push_back(std::make_unique<Bvh>(edges));
+    obstacle_face_bvh.push_back(&obstacle_face_tree_[o].update(faces));
+    obstacle_edge_bvh.push_back(&obstacle_edge_tree_[o].update(edges));
   }
   std::vector<char> cloth_node_used(static_cast<std::size_t>(num_nodes_), 0);
   for (const auto& f : cloth_faces_)
@@ -104,7 +106,8 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   std::iota(parent.begin(), parent.end(), 0);
   std::vector<ImpactConstraint> constraints;
   std::vector<int32_t> constraint_anchor;  // a movable cloth node of each constraint
-  std::unique_ptr<Bvh> face_bvh, edge_bvh;
+  const Bvh* face_bvh = nullptr;
+  const Bvh* edge_bvh = nullptr;
   std::vector<char> moved(static_cast<std::size_t>(num_nodes_), 1);
   bool clear = false;
 
@@ -115,13 +118,8 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     edge_boxes.reserve(cloth_edges_.size());
     for (const auto& f : cloth_faces_) face_boxes.push_back(path_box({{-1, f[0]}, {-1, f[1]}, {-1, f[2]}}));
     for (const auto& e : cloth_edges_) edge_boxes.push_back(path_box({{-1, e[0]}, {-1, e[1]}}));
-    if (face_bvh) {
-      face_bvh->refit(face_boxes);
-      edge_bvh->refit(edge_boxes);
-    } else {
-      face_bvh = std::make_unique<Bvh>(face_boxes);
-      edge_bvh = std::make_unique<Bvh>(edge_boxes);
-    }
+    face_bvh = &cloth_face_tree_.update(face_boxes);
+    edge_bvh = &cloth_edge_tree_.update(edge_boxes);
 
     // Candidate tests are gathered serially from the hierarchies, then run in parallel; each
     // writes only its own result slot, and results are taken in gathering order.

@@ -12,11 +12,15 @@
 
 #include "core/bvh.hpp"
 #include "core/math.hpp"
+#include "collision/proximity.hpp"
 
 namespace vdc {
 
 struct CollisionParams {
   double thickness = 0.002;  // m: impacts are projected to at least this separation
+  double repulsion_thickness = 0.004;  // m: pairs closer than this are repelled in the implicit step
+  double repulsion_stiffness = 1.0;    // k h^2 / m of a pair: the share of a gap a step closes is k h^2 / (m + k h^2)
+  double friction = 0.3;               // Coulomb coefficient of proximity pairs
   int max_iterations = 20;   // detection-projection rounds before the fallback
   int threads = 1;           // for the detection tests (set by the simulation, not the scene)
 };
@@ -45,6 +49,13 @@ class Collider {
                          const std::vector<char>& fixed, const std::vector<std::vector<Vec3>>& obstacle_start,
                          const std::vector<std::vector<Vec3>>& obstacle_end, const CollisionParams& params);
 
+  // Proximity pairs closer than `band` at cloth positions x and velocities v (3n each) and the
+  // obstacles' vertex positions and velocities at the same time (proximity.cpp). Nodes marked
+  // `fixed` (handles) take part as points that do not move in the solve (node -1).
+  std::vector<ProximityPair> proximities(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const std::vector<char>& fixed,
+                                         const std::vector<std::vector<Vec3>>& obstacle_x,
+                                         const std::vector<std::vector<Vec3>>& obstacle_v, double band, int threads);
+
  private:
   std::vector<std::array<int32_t, 3>> cloth_faces_;
   std::vector<std::array<int32_t, 2>> cloth_edges_;
@@ -53,6 +64,9 @@ class Collider {
   std::vector<std::vector<std::array<int32_t, 2>>> obstacle_edges_;
   std::vector<std::vector<std::array<int32_t, 3>>> obstacle_face_edges_;
   int32_t num_nodes_;
+  // Hierarchies kept from step to step, refit to the boxes of each query.
+  RefitBvh cloth_face_tree_, cloth_edge_tree_;
+  std::vector<RefitBvh> obstacle_face_tree_, obstacle_edge_tree_;
 };
 
 }  // namespace vdc

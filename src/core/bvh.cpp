@@ -100,20 +100,4 @@ void Bvh::pairs_with(const Bvh& other, const std::function<void(int32_t, int32_t
   if (!leaf_box_.empty() && !other.leaf_box_.empty()) cross(0, other, 0, f, false);
 }
 
-void Bvh::query(const Aabb& box, const std::function<void(int32_t)>& f) const {
-  if (leaf_box_.empty()) return;
-  std::vector<int32_t> stack{0};
-  while (!stack.empty()) {
-    const Node& n = nodes_[static_cast<std::size_t>(stack.back())];
-    stack.pop_back();
-    if (!n.box.overlaps(box)) continue;
-    if (n.left < 0) {
-      f(n.prim);
-    } else {
-      stack.push_back(n.left);
-      stack.push_back(n.right);
-    }
-  }
-}
-
 }  // namespace vdc

@@ -5,6 +5,7 @@
 #include <array>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "core/math.hpp"
@@ -40,8 +41,25 @@ class Bvh {
   void self_pairs(const std::function<void(int32_t, int32_t)>& f) const;
   // Calls f(i, j) for every primitive i of this tree and j of `other` whose boxes overlap.
   void pairs_with(const Bvh& other, const std::function<void(int32_t, int32_t)>& f) const;
-  // Calls f(i) for every primitive whose box overlaps `box`.
-  void query(const Aabb& box, const std::function<void(int32_t)>& f) const;
+  // Calls f(i) for every primitive whose box overlaps `box`. Inline, with a fixed stack: the
+  // median split keeps the depth at most ceil(log2 n) + 1, far below its 128 entries.
+  template <class F>
+  void query(const Aabb& box, F&& f) const {
+    if (leaf_box_.empty()) return;
+    std::array<int32_t, 128> stack;
+    int top = 0;
+    stack[static_cast<std::size_t>(top++)] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
+      if (!n.box.overlaps(box)) continue;
+      if (n.left < 0) {
+        f(n.prim);
+      } else {
+        stack[static_cast<std::size_t>(top++)] = n.left;
+        stack[static_cast<std::size_t>(top++)] = n.right;
+      }
+    }
+  }
 
   int32_t size() const { return static_cast<int32_t>(leaf_box_.size()); }
   const Aabb& root_box() const { return nodes_.front().box; }
@@ -59,6 +77,26 @@ class Bvh {
 
   std::vector<Node> nodes_;
   std::vector<Aabb> leaf_box_;
+};
+
+// A hierarchy kept over a sequence of box updates for the same primitives: refit on each update,
+// rebuilt from scratch every `rebuild_every` updates (refits slowly loosen as things move) and
+// whenever the number of primitives changes.
+class RefitBvh {
+ public:
+  explicit RefitBvh(int rebuild_every = 16) : rebuild_every_(rebuild_every) {}
+  const Bvh& update(const std::vector<Aabb>& leaf_boxes) {
+    if (!tree_ || tree_->size() != static_cast<int32_t>(leaf_boxes.size()) || ++updates_ % rebuild_every_ == 0)
+      tree_ = std::make_unique<Bvh>(leaf_boxes);
+    else
+      tree_->refit(leaf_boxes);
+    return *tree_;
+  }
+
+ private:
+  int rebuild_every_;
+  int updates_ = 0;
+  std::unique_ptr<Bvh> tree_;
 };
 
 }  // namespace vdc

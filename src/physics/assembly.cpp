@@ -179,6 +179,28 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
   elastic_energy_ = energy;
 }
 
+void SystemAssembler::add_contacts(const std::vector<ContactTerm>& terms) {
+  double* val = a_.valuePtr();
+  for (const ContactTerm& t : terms) {
+    bool coupled = true;
+    for (int32_t i : t.nodes)
+      for (int32_t j : t.nodes)
+        if (i >= 0 && j >= 0 && slot_of(i, j) < 0) coupled = false;
+    for (std::size_t a = 0; a < 4; ++a) {
+      const int32_t i = t.nodes[a];
+      if (i < 0) continue;
+      b_.segment<3>(3 * i) += t.weights[a] * t.rhs;
+      for (std::size_t b = 0; b < 4; ++b) {
+        const int32_t j = t.nodes[b];
+        if (j < 0 || (!coupled && j != i)) continue;
+        const Mat3 block = t.weights[a] * t.weights[b] * t.block;
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r) val[value_index(i, j, r, c)] += block(r, c);
+      }
+    }
+  }
+}
+
 void SystemAssembler::constrain(const std::vector<VelocityConstraint>& constraints) {
   double* val = a_.valuePtr();
   for (const auto& con : constraints) {

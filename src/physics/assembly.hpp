@@ -10,6 +10,7 @@
 #include <Eigen/Sparse>
 
 #include "physics/cloth_model.hpp"
+#include "physics/contact.hpp"
 
 namespace vdc {
 
@@ -35,6 +36,10 @@ class SystemAssembler {
   explicit SystemAssembler(const ClothModel& model);
 
   void assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const StepParams& p);
+  // Adds contact terms after assemble(). A term whose movable nodes are all neighbours in the
+  // pattern adds its full block; otherwise (cloth-cloth pairs across the mesh) only its diagonal
+  // blocks, which keeps the pattern fixed and the matrix positive definite.
+  void add_contacts(const std::vector<ContactTerm>& terms);
   // Eliminates constrained nodes: their rows and columns become identity, rhs the prescribed dv.
   void constrain(const std::vector<VelocityConstraint>& constraints);
 

@@ -18,10 +18,11 @@ ImplicitIntegrator::ImplicitIntegrator(const ClothModel& model, LinearSolverKind
 }
 
 StepReport ImplicitIntegrator::step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<VelocityConstraint>& constraints,
-                                    const StepParams& p, double max_dv) {
+                                    const StepParams& p, double max_dv, const std::vector<ContactTerm>& contacts) {
   StepReport r;
   auto t0 = std::chrono::steady_clock::now();
   assembler_.assemble(x, v, p);
+  assembler_.add_contacts(contacts);
   assembler_.constrain(constraints);
   r.assemble_seconds = seconds_since(t0);
   if (!assembler_.rhs().allFinite()) {

@@ -23,8 +23,9 @@ class ImplicitIntegrator {
   ImplicitIntegrator(const ClothModel& model, LinearSolverKind kind, const LinearSolverParams& params = {});
   // Advances x, v (3n each) by p.h. On failure (non-finite values, solver failure, a velocity
   // change above max_dv) x and v are left unchanged and the report says why.
+  // `contacts` (proximity repulsion and friction) join the elastic forces.
   StepReport step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<VelocityConstraint>& constraints,
-                  const StepParams& p, double max_dv);
+                  const StepParams& p, double max_dv, const std::vector<ContactTerm>& contacts = {});
   const SystemAssembler& assembler() const { return assembler_; }
 
  private:

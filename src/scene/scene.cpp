@@ -236,8 +236,13 @@ Scene load_scene(const std::string& path) {
     s.fixed_size = r->positive_or("fixed_size", 0.0);
   }
   if (auto c = j.find("collision")) {
-    c->only_keys({"thickness", "max_iterations"});
+    c->only_keys({"thickness", "max_iterations", "repulsion_thickness", "repulsion_stiffness", "friction"});
     s.collision.thickness = c->positive_or("thickness", s.collision.thickness);
+    s.collision.repulsion_thickness = c->positive_or("repulsion_thickness", 2 * s.collision.thickness);
+    if (s.collision.repulsion_thickness < s.collision.thickness)
+      c->at("repulsion_thickness").fail("must be at least the thickness");
+    s.collision.repulsion_stiffness = c->positive_or("repulsion_stiffness", s.collision.repulsion_stiffness);
+    s.collision.friction = c->non_negative_or("friction", s.collision.friction);
     long long it = c->integer_or("max_iterations", s.collision.max_iterations);
     if (it < 1 || it > 1000) c->at("max_iterations").fail("must be between 1 and 1000");
     s.collision.max_iterations = static_cast<int>(it);

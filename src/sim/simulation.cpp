@@ -120,15 +120,23 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
   p.wind = scene_.air.wind;
   p.threads = options_.threads;
   const std::vector<VelocityConstraint> held = constraints(t + h, h);
+  std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
+  for (const auto& c : held) fixed[static_cast<std::size_t>(c.node)] = 1;
+  ObstacleMotion obstacles;
+  for (const auto& o : scene_.obstacles) {
+    obstacles.start.push_back(o.positions_at(t));
+    obstacles.end.push_back(o.positions_at(t + h));
+  }
+  const std::vector<ContactTerm> contacts = proximity_contacts(fixed, obstacles, h, stats);
   const Eigen::VectorXd x_start = x_;
-  StepReport r = integrator_->step(x_, v_, held, p, scene_.solver.max_velocity_change);
+  StepReport r = integrator_->step(x_, v_, held, p, scene_.solver.max_velocity_change, contacts);
   stats.assemble_seconds += r.assemble_seconds;
   stats.solve_seconds += r.solve_seconds;
   stats.solver_iterations += r.solver_iterations;
   stats.factorizations += r.factorizations;
   if (r.ok) {
     ++stats.substeps;
-    resolve_collisions(x_start, t, h, held, stats);
+    resolve_collisions(x_start, h, fixed, obstacles, stats);
     return;
   }
   if (depth >= scene_.solver.max_step_halvings) {
@@ -147,19 +155,34 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
   advance(t + h / 2, h / 2, depth + 1, stats);
 }
 
-void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double t, double h, const std::vector<VelocityConstraint>& held,
-                                    FrameStats& stats) {
+std::vector<ContactTerm> Simulation::proximity_contacts(const std::vector<char>& fixed, const ObstacleMotion& obstacles, double h,
+                                                        FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
-  for (const auto& c : held) fixed[static_cast<std::size_t>(c.node)] = 1;
-  std::vector<std::vector<Vec3>> obstacles_start, obstacles_end;
-  for (const auto& o : scene_.obstacles) {
-    obstacles_start.push_back(o.positions_at(t));
-    obstacles_end.push_back(o.positions_at(t + h));
+  std::vector<std::vector<Vec3>> obstacle_v;
+  for (std::size_t o = 0; o < obstacles.start.size(); ++o) {
+    std::vector<Vec3> vel(obstacles.start[o].size());
+    for (std::size_t i = 0; i < vel.size(); ++i) vel[i] = (obstacles.end[o][i] - obstacles.start[o][i]) / h;
+    obstacle_v.push_back(std::move(vel));
   }
+  const CollisionParams& c = scene_.collision;
+  const std::vector<ProximityPair> pairs =
+      collider_->proximities(x_, v_, fixed, obstacles.start, obstacle_v, c.repulsion_thickness, options_.threads);
+  ContactParams params;
+  params.band = c.repulsion_thickness;
+  params.stiffness = c.repulsion_stiffness;
+  params.friction = c.friction;
+  std::vector<ContactTerm> terms = contact_terms(pairs, v_, model_.node_mass, h, params);
+  stats.proximities = std::max(stats.proximities, static_cast<int>(pairs.size()));
+  stats.collision_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return terms;
+}
+
+void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed,
+                                    const ObstacleMotion& obstacles, FrameStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
   CollisionParams params = scene_.collision;
   params.threads = options_.threads;
-  CollisionStats c = collider_->resolve(x_start, x_, model_.node_mass, fixed, obstacles_start, obstacles_end, params);
+  CollisionStats c = collider_->resolve(x_start, x_, model_.node_mass, fixed, obstacles.start, obstacles.end, params);
   v_ = (x_ - x_start) / h;
   stats.impacts += c.impacts;
   stats.collision_iterations += c.iterations;

@@ -38,6 +38,7 @@ struct FrameStats {
   double assemble_seconds = 0, solve_seconds = 0;
   double remesh_seconds = 0;  // sizing, remeshing and rebuilding the system (adaptive mode)
   int splits = 0, flips = 0, collapses = 0;
+  int proximities = 0;  // most proximity pairs in one step of the frame
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
   double collision_seconds = 0;
   EnergyReport energy;
@@ -66,8 +67,16 @@ class Simulation {
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
   void advance(double t, double h, int depth, FrameStats& stats);
+  // Obstacle vertex positions at the start and end of a step, per obstacle.
+  struct ObstacleMotion {
+    std::vector<std::vector<Vec3>> start, end;
+  };
+  // Repulsion and friction terms of the proximity pairs at the start of a step.
+  std::vector<ContactTerm> proximity_contacts(const std::vector<char>& fixed, const ObstacleMotion& obstacles, double h,
+                                              FrameStats& stats);
   // Continuous collision handling of the step that just moved x_ from x_start; velocities follow.
-  void resolve_collisions(const Eigen::VectorXd& x_start, double t, double h, const std::vector<VelocityConstraint>& held, FrameStats& stats);
+  void resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed, const ObstacleMotion& obstacles,
+                          FrameStats& stats);
 
   Scene scene_;
   SimOptions options_;

@@ -1,0 +1,255 @@
+// Proximity pairs at the start of a step (Bridson, Fedkiw and Anderson 2002, section 7.2): the
+// cloth and obstacle primitives closer than the repulsion thickness, with the normal that
+// separates them. Obstacles have an outside (their faces' normals), so a cloth point that has
+// sunk into an obstacle is pushed back out, not further in.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "collision/collider.hpp"
+#include "collision/distance.hpp"
+
+namespace vdc {
+
+namespace {
+
+Vec3 unit_or_zero(const Vec3& a) {
+  const double n = a.norm();
+  return n > 0 ? Vec3(a / n) : Vec3::Zero();
+}
+
+// Outward normals of an obstacle at its current positions: per face, per vertex and per edge
+// (area-weighted averages of the adjacent faces).
+struct ObstacleNormals {
+  std::vector<Vec3> face, vertex, edge;
+};
+
+ObstacleNormals obstacle_normals(const CollisionMesh& mesh, const std::vector<std::array<int32_t, 2>>& edges,
+                                 const std::vector<std::array<int32_t, 3>>& face_edges, const std::vector<Vec3>& x) {
+  ObstacleNormals n;
+  n.face.resize(mesh.faces.size());
+  n.vertex.assign(x.size(), Vec3::Zero());
+  n.edge.assign(edges.size(), Vec3::Zero());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    const Vec3 an = area_normal(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]);
+    n.face[f] = unit_or_zero(an);
+    for (int i = 0; i < 3; ++i) {
+      n.vertex[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] += an;
+      n.edge[static_cast<std::size_t>(face_edges[f][static_cast<std::size_t>(i)])] += an;
+    }
+  }
+  for (auto& v : n.vertex) v = unit_or_zero(v);
+  for (auto& e : n.edge) e = unit_or_zero(e);
+  return n;
+}
+
+// The separating direction of a cloth point from an obstacle point whose outward normal is
+// `outward`: straight away when the cloth is outside and not too close to tell, else the normal.
+Vec3 obstacle_direction(const Vec3& sep, const Vec3& outward, double band) {
+  const double len = sep.norm();
+  if (sep.dot(outward) > 0 && len > 0.1 * band) return sep / len;
+  return outward;
+}
+
+}  // namespace
+
+std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const std::vector<char>& fixed,
+                                                 const std::vector<std::vector<Vec3>>& obstacle_x,
+                                                 const std::vector<std::vector<Vec3>>& obstacle_v, double band, int threads) {
+  auto cx = [&](int32_t i) { return Vec3(x.segment<3>(3 * i)); };
+  auto box_of = [&](std::initializer_list<Vec3> pts) {
+    Aabb b;
+    for (const Vec3& p : pts) b.grow(p);
+    return b;
+  };
+  std::vector<Aabb> face_boxes, edge_boxes;
+  for (const auto& f : cloth_faces_) face_boxes.push_back(box_of({cx(f[0]), cx(f[1]), cx(f[2])}));
+  for (const auto& e : cloth_edges_) edge_boxes.push_back(box_of({cx(e[0]), cx(e[1])}));
+  const Bvh& face_bvh = cloth_face_tree_.update(face_boxes);
+  const Bvh& edge_bvh = cloth_edge_tree_.update(edge_boxes);
+  const std::size_t num_obstacles = obstacles_.size();
+  std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
+  std::vector<ObstacleNormals> normals;
+  for (std::size_t o = 0; o < num_obstacles; ++o) {
+    const auto& ox = obstacle_x[o];
+    std::vector<Aabb> faces, edges;
+    for (const auto& f : obstacles_[o].faces)
+      faces.push_back(box_of({ox[static_cast<std::size_t>(f[0])], ox[static_cast<std::size_t>(f[1])], ox[static_cast<std::size_t>(f[2])]}));
+    for (const auto& e : obstacle_edges_[o]) edges.push_back(box_of({ox[static_cast<std::size_t>(e[0])], ox[static_cast<std::size_t>(e[1])]}));
+    obstacle_face_bvh.push_back(&obstacle_face_tree_[o].update(faces));
+    obstacle_edge_bvh.push_back(&obstacle_edge_tree_[o].update(edges));
+    normals.push_back(obstacle_normals(obstacles_[o], obstacle_edges_[o], obstacle_face_edges_[o], ox));
+  }
+
+  // Fills slot j of a pair with cloth node i (a handle becomes a moving fixed point).
+  auto set_cloth = [&](ProximityPair& p, int j, int32_t i, double w) {
+    const auto ju = static_cast<std::size_t>(j);
+    const bool held = fixed[static_cast<std::size_t>(i)] != 0;
+    p.nodes[ju] = held ? -1 : i;
+    p.weights[ju] = w;
+    p.obstacle_velocity[ju] = held ? Vec3(v.segment<3>(3 * i)) : Vec3::Zero();
+  };
+  auto set_obstacle = [&](ProximityPair& p, int j, std::size_t o, int32_t i, double w) {
+    const auto ju = static_cast<std::size_t>(j);
+    p.nodes[ju] = -1;
+    p.weights[ju] = w;
+    p.obstacle_velocity[ju] = obstacle_v[o][static_cast<std::size_t>(i)];
+  };
+
+  std::vector<char> used(static_cast<std::size_t>(num_nodes_), 0);
+  for (const auto& f : cloth_faces_)
+    for (int32_t n : f) used[static_cast<std::size_t>(n)] = 1;
+
+  // Cloth vertices: the nearest cloth face on each side, the nearest face of each obstacle.
+  const std::size_t per_vertex = 2 + num_obstacles;
+  std::vector<std::optional<ProximityPair>> vertex_pairs(static_cast<std::size_t>(num_nodes_) * per_vertex);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (int32_t i = 0; i < num_nodes_; ++i) {
+    if (!used[static_cast<std::size_t>(i)]) continue;
+    const Vec3 p = cx(i);
+    Aabb box = box_of({p});
+    box.pad(band);
+    auto* slots = &vertex_pairs[static_cast<std::size_t>(i) * per_vertex];
+    face_bvh.query(box, [&](int32_t f) {
+      const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
+      if (t[0] == i || t[1] == i || t[2] == i) return;
+      const Vec3 a = cx(t[0]), b = cx(t[1]), c = cx(t[2]);
+      const Vec3 w = closest_triangle_weights(p, a, b, c);
+      const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
+      const double dist = sep.norm();
+      if (dist >= band) return;
+      const Vec3 face_normal = unit_or_zero((b - a).cross(c - a));
+      const Vec3 n = dist > 1e-9 * band ? Vec3(sep / dist) : face_normal;
+      if (n.squaredNorm() == 0) return;
+      auto& slot = slots[n.dot(face_normal) >= 0 ? 0 : 1];
+      if (slot && slot->distance <= dist) return;
+      ProximityPair pair;
+      set_cloth(pair, 0, i, 1.0);
+      for (int k = 0; k < 3; ++k) set_cloth(pair, k + 1, t[static_cast<std::size_t>(k)], -w[k]);
+      pair.normal = n;
+      pair.distance = dist;
+      slot = pair;
+    });
+    for (std::size_t o = 0; o < num_obstacles; ++o) {
+      const auto& ox = obstacle_x[o];
+      double best = band;
+      obstacle_face_bvh[o]->query(box, [&](int32_t f) {
+        const auto& t = obstacles_[o].faces[static_cast<std::size_t>(f)];
+        const Vec3 &a = ox[static_cast<std::size_t>(t[0])], &b = ox[static_cast<std::size_t>(t[1])], &c = ox[static_cast<std::size_t>(t[2])];
+        const Vec3 w = closest_triangle_weights(p, a, b, c);
+        const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
+        const double dist = sep.norm();
+        if (dist >= best) return;
+        const Vec3 outward = normals[o].face[static_cast<std::size_t>(f)];
+        if (outward.squaredNorm() == 0) return;
+        best = dist;
+        ProximityPair pair;
+        set_cloth(pair, 0, i, 1.0);
+        for (int k = 0; k < 3; ++k) set_obstacle(pair, k + 1, o, t[static_cast<std::size_t>(k)], -w[k]);
+        pair.normal = obstacle_direction(sep, outward, band);
+        pair.distance = pair.normal.dot(sep);
+        slots[2 + o] = pair;
+      });
+    }
+  }
+
+  // Obstacle vertices: the nearest cloth face.
+  std::vector<std::vector<std::optional<ProximityPair>>> obstacle_vertex_pairs(num_obstacles);
+  for (std::size_t o = 0; o < num_obstacles; ++o) {
+    const auto& ox = obstacle_x[o];
+    const auto nv = static_cast<int64_t>(ox.size());
+    obstacle_vertex_pairs[o].resize(ox.size());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+    for (int64_t i = 0; i < nv; ++i) {
+      const Vec3& p = ox[static_cast<std::size_t>(i)];
+      const Vec3& outward = normals[o].vertex[static_cast<std::size_t>(i)];
+      if (outward.squaredNorm() == 0) continue;
+      Aabb box = box_of({p});
+      box.pad(band);
+      double best = band;
+      face_bvh.query(box, [&](int32_t f) {
+        const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
+        const Vec3 a = cx(t[0]), b = cx(t[1]), c = cx(t[2]);
+        const Vec3 w = closest_triangle_weights(p, a, b, c);
+        const Vec3 sep = (w[0] * a + w[1] * b + w[2] * c) - p;
+        const double dist = sep.norm();
+        if (dist >= best) return;
+        best = dist;
+        ProximityPair pair;
+        for (int k = 0; k < 3; ++k) set_cloth(pair, k, t[static_cast<std::size_t>(k)], w[k]);
+        set_obstacle(pair, 3, o, static_cast<int32_t>(i), -1.0);
+        pair.normal = obstacle_direction(sep, outward, band);
+        pair.distance = pair.normal.dot(sep);
+        obstacle_vertex_pairs[o][static_cast<std::size_t>(i)] = pair;
+      });
+    }
+  }
+
+  // Edges: pairs whose closest points are inside both edges.
+  auto interior = [](double s) { return s > 1e-6 && s < 1 - 1e-6; };
+  const auto ne = static_cast<int64_t>(cloth_edges_.size());
+  std::vector<std::vector<ProximityPair>> edge_pairs(cloth_edges_.size());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (int64_t ea = 0; ea < ne; ++ea) {
+    const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+    const Vec3 a0 = cx(A[0]), a1 = cx(A[1]);
+    Aabb box = box_of({a0, a1});
+    box.pad(band);
+    auto& out = edge_pairs[static_cast<std::size_t>(ea)];
+    edge_bvh.query(box, [&](int32_t eb) {
+      if (eb <= ea) return;
+      const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
+      if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
+      const Vec3 b0 = cx(B[0]), b1 = cx(B[1]);
+      const Vec2 su = closest_segment_params(a0, a1, b0, b1);
+      if (!interior(su.x()) || !interior(su.y())) return;
+      const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
+      const double dist = sep.norm();
+      if (dist >= band || dist <= 1e-9 * band) return;
+      ProximityPair pair;
+      set_cloth(pair, 0, A[0], 1 - su.x());
+      set_cloth(pair, 1, A[1], su.x());
+      set_cloth(pair, 2, B[0], -(1 - su.y()));
+      set_cloth(pair, 3, B[1], -su.y());
+      pair.normal = sep / dist;
+      pair.distance = dist;
+      out.push_back(pair);
+    });
+    for (std::size_t o = 0; o < num_obstacles; ++o) {
+      const auto& ox = obstacle_x[o];
+      obstacle_edge_bvh[o]->query(box, [&](int32_t eb) {
+        const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eb)];
+        const Vec3 &b0 = ox[static_cast<std::size_t>(B[0])], &b1 = ox[static_cast<std::size_t>(B[1])];
+        const Vec2 su = closest_segment_params(a0, a1, b0, b1);
+        if (!interior(su.x()) || !interior(su.y())) return;
+        const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
+        const Vec3& outward = normals[o].edge[static_cast<std::size_t>(eb)];
+        if (sep.norm() >= band || outward.squaredNorm() == 0) return;
+        ProximityPair pair;
+        set_cloth(pair, 0, A[0], 1 - su.x());
+        set_cloth(pair, 1, A[1], su.x());
+        set_obstacle(pair, 2, o, B[0], -(1 - su.y()));
+        set_obstacle(pair, 3, o, B[1], -su.y());
+        pair.normal = obstacle_direction(sep, outward, band);
+        pair.distance = pair.normal.dot(sep);
+        out.push_back(pair);
+      });
+    }
+  }
+
+  std::vector<ProximityPair> pairs;
+  auto keep = [&](const ProximityPair& p) {
+    if (std::any_of(p.nodes.begin(), p.nodes.end(), [](int32_t n) { return n >= 0; })) pairs.push_back(p);
+  };
+  for (const auto& p : vertex_pairs)
+    if (p) keep(*p);
+  for (const auto& list : obstacle_vertex_pairs)
+    for (const auto& p : list)
+      if (p) keep(*p);
+  for (const auto& list : edge_pairs)
+    for (const auto& p : list) keep(p);
+  return pairs;
+}
+
+}  // namespace vdc

@@ -1,0 +1,111 @@
+// Proximity pairs on hand-built configurations: the right pair, weights, normal and distance,
+// one pair per vertex and side even over a shared edge, obstacles pushing outward, nothing
+// beyond the band.
+#include <gtest/gtest.h>
+
+#include "collision/collider.hpp"
+
+namespace vdc {
+namespace {
+
+struct Scenario {
+  std::vector<std::array<int32_t, 3>> faces;
+  Eigen::VectorXd x, v;
+  std::vector<CollisionMesh> obstacles;
+  std::vector<std::vector<Vec3>> ox, ov;
+  std::vector<ProximityPair> find(double band) {
+    Collider c(faces, obstacles, static_cast<int32_t>(x.size() / 3));
+    std::vector<char> fixed(static_cast<std::size_t>(x.size() / 3), 0);
+    return c.proximities(x, v, fixed, ox, ov, band, 2);
+  }
+};
+
+Eigen::VectorXd stack(std::initializer_list<Vec3> pts) {
+  Eigen::VectorXd x(3 * static_cast<int64_t>(pts.size()));
+  int i = 0;
+  for (const Vec3& p : pts) x.segment<3>(3 * i++) = p;
+  return x;
+}
+
+TEST(Proximity, VertexOverAFaceGivesOnePairWithItsBarycentricWeights) {
+  Scenario s;
+  // Two faces of a unit square at y = 0 sharing the diagonal 1-2, and a lone triangle whose
+  // corner 4 hangs 3 mm over the point (0.25, 0, 0.5) of face 0.
+  s.faces = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}};
+  s.x = stack({{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0.25, 0.003, 0.5}, {0.25, 0.5, 2}, {-0.5, 0.5, 2}});
+  s.v = Eigen::VectorXd::Zero(s.x.size());
+  auto pairs = s.find(0.004);
+  ASSERT_EQ(pairs.size(), 1u);
+  const ProximityPair& p = pairs[0];
+  EXPECT_EQ(p.nodes[0], 4);
+  EXPECT_NEAR(p.distance, 0.003, 1e-15);
+  EXPECT_NEAR(p.normal.y(), 1.0, 1e-12);
+  Vec3 sep = Vec3::Zero();
+  double wsum = 0;
+  for (std::size_t j = 0; j < 4; ++j) {
+    sep += p.weights[j] * s.x.segment<3>(3 * p.nodes[j]);
+    wsum += p.weights[j];
+  }
+  EXPECT_NEAR(wsum, 0, 1e-15);
+  EXPECT_LT((sep - Vec3(0, 0.003, 0)).norm(), 1e-14);
+  EXPECT_TRUE(s.find(0.0029).empty());
+}
+
+TEST(Proximity, VertexOverASharedEdgeIsCountedOncePerSide) {
+  Scenario s;
+  s.faces = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}};
+  // Node 4 right over the middle of the shared diagonal, 2 mm above.
+  s.x = stack({{0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1, 0, 1}, {0.5, 0.002, 0.5}, {0.5, 0.5, 2}, {-0.5, 0.5, 2}});
+  s.v = Eigen::VectorXd::Zero(s.x.size());
+  auto pairs = s.find(0.004);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_NEAR(pairs[0].distance, 0.002, 1e-15);
+  // A layer on each side: one pair per side.
+  s.faces.push_back({7, 8, 9});
+  s.x.conservativeResize(30);
+  s.x.segment<3>(21) = Vec3(0, 0.004, 0);
+  s.x.segment<3>(24) = Vec3(1, 0.004, 1);
+  s.x.segment<3>(27) = Vec3(1, 0.004, 0);
+  s.v = Eigen::VectorXd::Zero(s.x.size());
+  pairs = s.find(0.0025);
+  int over_node4 = 0;
+  for (const auto& p : pairs)
+    if (p.nodes[0] == 4 && p.weights[0] == 1.0) ++over_node4;  // vertex-face pairs of node 4
+  EXPECT_EQ(over_node4, 2);
+}
+
+TEST(Proximity, CrossingEdgesGiveAnEdgePairAndObstaclesPushOutward) {
+  Scenario s;
+  // A cloth triangle whose edge 0-1 runs along x at height 1 mm over an obstacle edge along z
+  // (the shared edge of two obstacle faces, outward +y); no vertex is over a face.
+  s.faces = {{0, 1, 2}};
+  s.x = stack({{-1, 0.001, 0}, {1, 0.001, 0}, {0, 0.5, -0.5}});
+  s.v = Eigen::VectorXd::Zero(9);
+  CollisionMesh roof;
+  roof.faces = {{0, 1, 2}, {0, 3, 1}};
+  s.obstacles = {roof};
+  // Two faces meeting at the ridge 0-1 along z, sloping down on both sides.
+  s.ox = {{Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(1, -1, 0), Vec3(-1, -1, 0)}};
+  s.ov = {{Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1)}};
+  auto pairs = s.find(0.004);
+  ASSERT_EQ(pairs.size(), 1u);
+  const ProximityPair& p = pairs[0];
+  EXPECT_EQ(p.nodes[0], 0);
+  EXPECT_EQ(p.nodes[1], 1);
+  EXPECT_EQ(p.nodes[2], -1);
+  EXPECT_NEAR(p.weights[0], 0.5, 1e-12);
+  EXPECT_NEAR(p.weights[2], -0.5, 1e-12);
+  EXPECT_NEAR(p.distance, 0.001, 1e-12);
+  EXPECT_NEAR(p.normal.y(), 1.0, 1e-12);
+  EXPECT_EQ(p.obstacle_velocity[2], Vec3(0, 0, 1));
+  // Sunk 1 mm below the ridge: still pushed up (outward), with a negative distance.
+  s.x.segment<3>(0) = Vec3(-1, -0.001, 0);
+  s.x.segment<3>(3) = Vec3(1, -0.001, 0);
+  pairs = s.find(0.004);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_NEAR(pairs[0].distance, -0.001, 1e-12);
+  EXPECT_NEAR(pairs[0].normal.y(), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace vdc
