@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "remesh/remesher.hpp"
 #include "remesh/sizing.hpp"
+#include "collision/untangle.hpp"
 
 namespace vdc {
 
@@ -27,6 +28,14 @@ const char* sim_mode_name(SimMode mode) {
   return "?";
 }
 
+namespace {
+CollisionMesh collision_mesh(const Mesh& mesh) {
+  CollisionMesh cm;
+  for (FaceId f : mesh.faces()) cm.faces.push_back({mesh.face_node(f, 0).idx, mesh.face_node(f, 1).idx, mesh.face_node(f, 2).idx});
+  return cm;
+}
+}  // namespace
+
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
     : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
   for (auto& g : scene_.garments) {
@@ -38,6 +47,8 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
     }
   }
   rebuild();
+  FrameStats start;
+  untangle_cloth(start);
 }
 
 void Simulation::remesh_garments(FrameStats& stats) {
@@ -51,6 +62,33 @@ void Simulation::remesh_garments(FrameStats& stats) {
   }
   rebuild();
   stats.remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  untangle_cloth(stats);
+}
+
+void Simulation::untangle_cloth(FrameStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
+  for (const auto& c : constraints(time(), scene_.frame_time)) fixed[static_cast<std::size_t>(c.node)] = 1;
+  std::vector<CollisionMesh> obstacles;
+  std::vector<std::vector<Vec3>> obstacle_x;
+  for (const auto& o : scene_.obstacles) {
+    obstacles.push_back(collision_mesh(o.mesh));
+    obstacle_x.push_back(o.positions_at(time()));
+  }
+  UntangleParams params;
+  params.thickness = scene_.collision.thickness;
+  params.step = scene_.collision.thickness;
+  const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacles, obstacle_x, params);
+  stats.untangle_moves += r.moves;
+  if (r.cloth_pairs + r.obstacle_pairs > 0 && log_) {
+    std::ostringstream msg;
+    msg << "frame " << frame_ << ": untangling " << r.cloth_pairs << " cloth-cloth and " << r.obstacle_pairs
+        << " cloth-obstacle intersecting pairs: " << r.iterations << " iterations, " << r.moves << " vertex moves";
+    if (r.remaining > 0) msg << "; " << r.remaining << " pairs remain";
+    log_(msg.str());
+  }
+  if (r.moves > 0) scatter_state();
+  stats.collision_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void Simulation::rebuild() {
@@ -61,11 +99,7 @@ void Simulation::rebuild() {
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
   std::vector<CollisionMesh> obstacles;
-  for (const auto& o : scene_.obstacles) {
-    CollisionMesh cm;
-    for (FaceId f : o.mesh.faces()) cm.faces.push_back({o.mesh.face_node(f, 0).idx, o.mesh.face_node(f, 1).idx, o.mesh.face_node(f, 2).idx});
-    obstacles.push_back(std::move(cm));
-  }
+  for (const auto& o : scene_.obstacles) obstacles.push_back(collision_mesh(o.mesh));
   collider_ = std::make_unique<Collider>(model_.face_nodes, std::move(obstacles), model_.num_nodes);
   gather_state();
 }

@@ -39,6 +39,7 @@ struct FrameStats {
   double remesh_seconds = 0;  // sizing, remeshing and rebuilding the system (adaptive mode)
   int splits = 0, flips = 0, collapses = 0;
   int proximities = 0;  // most proximity pairs in one step of the frame
+  int untangle_moves = 0;  // vertex moves of untangling (after remeshing)
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
   double collision_seconds = 0;
   EnergyReport energy;
@@ -63,6 +64,8 @@ class Simulation {
  private:
   void rebuild();                       // elements, assembler and solver from the meshes
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
+  // Removes interpenetrations that exist at the current time (start-up, after remeshing).
+  void untangle_cloth(FrameStats& stats);
   void gather_state();                  // meshes -> x_, v_
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
