@@ -1,6 +1,7 @@
 #include "scene/scene.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <filesystem>
 #include <limits>
 #include <set>
@@ -11,6 +12,7 @@
 #include "physics/cloth_model.hpp"
 #include "scene/transform.hpp"
 #include "scene/track.hpp"
+#include "scene/obj_sequence.hpp"
 
 namespace vdc {
 
@@ -158,14 +160,39 @@ GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
   return g;
 }
 
-ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path) {
+ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time) {
   j.only_keys({"name", "mesh", "transform", "motion"});
   ObstacleSpec o;
   o.name = j.at("name").string();
-  o.mesh = parse_mesh(j.at("mesh"), scene_path, false);
+  const JsonValue mesh = j.at("mesh");
+  if (auto seq = mesh.is_string() ? std::nullopt : mesh.find("sequence")) {
+    mesh.only_keys({"sequence"});
+    seq->only_keys({"files", "first", "count", "frame_time"});
+    const long long first = seq->integer_or("first", 1), count = seq->at("count").integer();
+    if (count < 1 || count > 1'000'000) seq->at("count").fail("must be between 1 and 1,000,000");
+    if (first < 0 || first > 1'000'000'000) seq->at("first").fail("must be between 0 and 1,000,000,000");
+    const double dt = seq->positive_or("frame_time", frame_time);
+    const JsonValue files = seq->at("files");
+    std::string pattern = files.string();
+    if (pattern.empty()) files.fail("empty file pattern");
+    if (!fs::path(pattern).is_absolute()) pattern = (fs::path(scene_path).parent_path() / pattern).string();
+    ObjSequence s = with_key(files, [&] {
+      std::vector<std::string> names = sequence_files(pattern, static_cast<int>(first), static_cast<int>(count));
+      for (const auto& n : names)
+        if (!fs::is_regular_file(n)) throw InputError(n, "", "file not found (frame " + std::to_string(&n - names.data() + first) + " of the sequence)");
+      return load_obj_sequence(names, dt);
+    });
+    o.mesh = std::move(s.mesh);
+    o.sequence = std::move(s.frames);
+    o.sequence_frame_time = dt;
+  } else {
+    o.mesh = parse_mesh(mesh, scene_path, false);
+  }
   if (auto t = j.find("transform")) {
     Transform tr = parse_transform(*t);
     for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = tr.apply(o.mesh.x(n));
+    for (auto& frame : o.sequence)
+      for (Vec3& x : frame) x = tr.apply(x);
   }
   o.rest.resize(static_cast<std::size_t>(o.mesh.node_capacity()));
   Vec3 centre = Vec3::Zero();
@@ -255,7 +282,7 @@ Scene load_scene(const std::string& path) {
   if (s.garments.empty()) j.at("garments").fail("a scene needs at least one garment");
   if (auto obs = j.find("obstacles"))
     for (const JsonValue& o : obs->items()) {
-      s.obstacles.push_back(parse_obstacle(o, path));
+      s.obstacles.push_back(parse_obstacle(o, path, s.frame_time));
       check_name(o.at("name"), s.obstacles.back().name, names);
     }
   return s;
@@ -270,8 +297,9 @@ std::vector<Vec3> ObstacleSpec::positions_at(double t) const {
   motion.rotate_degrees = rotate.at(t);
   const Mat3 r = motion.rotation();
   const Vec3 offset = translate.at(t);
-  std::vector<Vec3> out(rest.size());
-  for (std::size_t i = 0; i < rest.size(); ++i) out[i] = r * (rest[i] - pivot) + pivot + offset;
+  std::vector<Vec3> out = rest;
+  if (sequence.size() > 1) out = interpolate_frames(sequence, sequence_frame_time, t);
+  for (Vec3& x : out) x = r * (x - pivot) + pivot + offset;
   return out;
 }
 

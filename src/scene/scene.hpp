@@ -31,7 +31,10 @@ struct ObstacleSpec {
   Vec3 pivot = Vec3::Zero();
   Vec3Track translate;     // offsets, m
   Vec3Track rotate;        // degrees about X, then Y, then Z
-  bool moves() const { return !translate.empty() || !rotate.empty(); }
+  // An OBJ sequence (placed by the transform): replaces `rest` as the positions before motion.
+  std::vector<std::vector<Vec3>> sequence;
+  double sequence_frame_time = 0;
+  bool moves() const { return !translate.empty() || !rotate.empty() || sequence.size() > 1; }
   std::vector<Vec3> positions_at(double t) const;
 };
 

@@ -88,6 +88,22 @@ TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
       {"frames -1", [&] { return scene(); }, {"--frames", "-1"}, {"--frames", "-1"}},
       {"unknown mode", [&] { return scene(); }, {"--mode", "fast"}, {"--mode", "fast"}},
       {"unknown option", [&] { return scene(); }, {"--speed", "2"}, {"unknown option", "--speed"}},
+      {"missing frame of an obstacle sequence",
+       [&] {
+         write("body.01.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nf 1 3 2\n");
+         write("body.02.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nf 1 3 2\n");
+         return scene("", R"("obstacles": [{"name": "b", "mesh": {"sequence": {"files": "body.%02d.obj", "count": 3}}}], )");
+       },
+       {},
+       {"obstacles[0].mesh.sequence.files", "body.03.obj", "file not found", "frame 3"}},
+      {"obstacle sequence that changes topology",
+       [&] {
+         write("body.01.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nv 1 -1 1\nf 1 3 2\nf 2 3 4\n");
+         write("body.02.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nv 1 -1 1\nf 1 3 2\nf 2 4 3\n");
+         return scene("", R"("obstacles": [{"name": "b", "mesh": {"sequence": {"files": "body.%02d.obj", "count": 2}}}], )");
+       },
+       {},
+       {"body.02.obj", "face 2", "other vertices"}},
       {"missing scene", [&] { return (dir_ / "nothing.json").string(); }, {}, {"nothing.json", "cannot open"}},
   };
   for (const Row& row : rows) {
