@@ -162,16 +162,24 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
     obstacles.end.push_back(o.positions_at(t + h));
   }
   const std::vector<ContactTerm> contacts = proximity_contacts(fixed, obstacles, h, stats);
-  const Eigen::VectorXd x_start = x_;
+  const Eigen::VectorXd x_start = x_, v_start = v_;
   StepReport r = integrator_->step(x_, v_, held, p, scene_.solver.max_velocity_change, contacts);
   stats.assemble_seconds += r.assemble_seconds;
   stats.solve_seconds += r.solve_seconds;
   stats.solver_iterations += r.solver_iterations;
   stats.factorizations += r.factorizations;
   if (r.ok) {
-    ++stats.substeps;
-    resolve_collisions(x_start, h, fixed, obstacles, stats);
-    return;
+    // Impact zones that do not separate: first retry the step in halves (smaller motions meet
+    // fewer impacts at once); at the last level the zones keep their start positions.
+    const bool may_halve = depth < kCollisionHalvings && depth < scene_.solver.max_step_halvings;
+    const int fallbacks = resolve_collisions(x_start, h, fixed, obstacles, stats, !may_halve);
+    if (fallbacks == 0 || !may_halve) {
+      ++stats.substeps;
+      return;
+    }
+    x_ = x_start;
+    v_ = v_start;
+    r.failure = std::to_string(fallbacks) + " impact zone(s) did not separate";
   }
   if (depth >= scene_.solver.max_step_halvings) {
     std::ostringstream msg;
@@ -211,8 +219,8 @@ std::vector<ContactTerm> Simulation::proximity_contacts(const std::vector<char>&
   return terms;
 }
 
-void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed,
-                                    const ObstacleMotion& obstacles, FrameStats& stats) {
+int Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed,
+                                   const ObstacleMotion& obstacles, FrameStats& stats, bool last_resort) {
   auto t0 = std::chrono::steady_clock::now();
   CollisionParams params = scene_.collision;
   params.threads = options_.threads;
@@ -220,14 +228,17 @@ void Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, co
   v_ = (x_ - x_start) / h;
   stats.impacts += c.impacts;
   stats.collision_iterations += c.iterations;
-  stats.collision_fallbacks += c.fallbacks;
-  if (c.fallbacks > 0 && log_) {
-    std::ostringstream msg;
-    msg << "frame " << frame_ + 1 << ": " << c.fallbacks << " impact zone(s) did not separate in " << c.iterations
-        << " rounds; they keep their start-of-step positions";
-    log_(msg.str());
+  if (last_resort) {
+    stats.collision_fallbacks += c.fallbacks;
+    if (c.fallbacks > 0 && log_) {
+      std::ostringstream msg;
+      msg << "frame " << frame_ + 1 << ": " << c.fallbacks << " impact zone(s) did not separate in " << c.iterations
+          << " rounds at step " << h << " s; they keep their start-of-step positions";
+      log_(msg.str());
+    }
   }
   stats.collision_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return c.fallbacks;
 }
 
 FrameStats Simulation::step_frame() {

@@ -78,8 +78,11 @@ class Simulation {
   std::vector<ContactTerm> proximity_contacts(const std::vector<char>& fixed, const ObstacleMotion& obstacles, double h,
                                               FrameStats& stats);
   // Continuous collision handling of the step that just moved x_ from x_start; velocities follow.
-  void resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed, const ObstacleMotion& obstacles,
-                          FrameStats& stats);
+  // Returns the zones that did not separate (counted as fallbacks when `last_resort`).
+  int resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed, const ObstacleMotion& obstacles,
+                         FrameStats& stats, bool last_resort);
+  // Halvings a step may take to let impact zones separate before the zones are frozen.
+  static constexpr int kCollisionHalvings = 2;
 
   Scene scene_;
   SimOptions options_;

@@ -18,32 +18,56 @@ TEST(Intersection, CrossingAndSeparateTriangles) {
   EXPECT_TRUE(triangles_intersect(t, {Vec3(0.5, -0.5, 0.5), Vec3(0.5, 0.5, -0.5), Vec3(0.5, 1.5, 0.5)}));
 }
 
-TEST(SheetFold, NoIntersectionsAndNothingInTheGroundAtAnyFrameEnd) {
-  Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/sheet-fold.json");
+struct FoldRun {
+  int contacts = 0, fallbacks = 0, halvings = 0;
+  double lowest_top = 1e9;
+};
+
+// Runs sheet-fold for `frames` frames, checking at every frame end that no vertex is in the
+// ground by more than 10% of the thickness and that no two cloth triangles intersect.
+FoldRun run_sheet_fold(Scene scene, int frames) {
   const double thickness = scene.collision.thickness;
   Simulation sim(std::move(scene), SimOptions{SimMode::Fixed, 1});
-  int contacts = 0, fallbacks = 0;
-  double lowest_top = 1e9;
-  for (int f = 0; f < 50; ++f) {
+  FoldRun run;
+  for (int f = 0; f < frames; ++f) {
     FrameStats s = sim.step_frame();
-    contacts += s.impacts + s.proximities;
-    fallbacks += s.collision_fallbacks;
+    run.contacts += s.impacts + s.proximities;
+    run.fallbacks += s.collision_fallbacks;
+    run.halvings += s.halvings;
     const Mesh& m = sim.scene().garments[0].mesh;
     std::vector<Vec3> x(static_cast<std::size_t>(m.node_capacity()));
     std::vector<std::array<int32_t, 3>> faces;
     double top = -1e9;
     for (NodeId n : m.nodes()) {
       x[static_cast<std::size_t>(n.idx)] = m.x(n);
-      ASSERT_GE(m.x(n).y(), -0.1 * thickness) << "frame " << s.frame << ": a vertex is in the ground";
+      EXPECT_GE(m.x(n).y(), -0.1 * thickness) << "frame " << s.frame << ": a vertex is in the ground";
       top = std::max(top, m.x(n).y());
     }
     for (FaceId face : m.faces()) faces.push_back({m.face_node(face, 0).idx, m.face_node(face, 1).idx, m.face_node(face, 2).idx});
-    ASSERT_EQ(count_self_intersections(faces, x), 0) << "frame " << s.frame;
-    lowest_top = std::min(lowest_top, top);
+    EXPECT_EQ(count_self_intersections(faces, x), 0) << "frame " << s.frame;
+    run.lowest_top = std::min(run.lowest_top, top);
+    if (::testing::Test::HasFailure()) break;
   }
-  EXPECT_GT(contacts, 1000);  // it did land and fold (proximity pairs and impacts, summed over frames)
-  EXPECT_LT(lowest_top, 0.2);    // the 1 m sheet ends up lying in folds, not standing
-  EXPECT_EQ(fallbacks, 0);
+  return run;
+}
+
+TEST(SheetFold, NoIntersectionsAndNothingInTheGroundAtAnyFrameEnd) {
+  Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/sheet-fold.json");
+  const int frames = scene.frames;  // the whole scene
+  FoldRun run = run_sheet_fold(std::move(scene), frames);
+  EXPECT_GT(run.contacts, 1000);   // it did land and fold (proximity pairs and impacts, summed over frames)
+  EXPECT_LT(run.lowest_top, 0.2);  // the 1 m sheet ends up lying in folds, not standing
+  EXPECT_EQ(run.fallbacks, 0);
+}
+
+TEST(SheetFold, ZonesThatCannotSeparateHalveTheStepThenFreezeAndTheRunGoesOn) {
+  // One detection round a step: every impact zone fails to confirm its separation, so the step
+  // is retried in halves and, at the last level, the zone keeps its start positions.
+  Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/sheet-fold.json");
+  scene.collision.max_iterations = 1;
+  FoldRun run = run_sheet_fold(std::move(scene), 40);
+  EXPECT_GT(run.halvings, 0);
+  EXPECT_GT(run.fallbacks, 0);
 }
 
 }  // namespace
