@@ -66,7 +66,23 @@ Mat2 tensor_max(const Mat2& a, const Mat2& b) {
   return q * l.asDiagonal() * q.transpose();
 }
 
-Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& normals, const SizingParams& p) {
+Mat2 obstacle_metric(const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) {
+  Mat2 o = Mat2::Zero();
+  for (int v = 0; v < 3; ++v) {
+    const ObstaclePlane& plane = planes[static_cast<std::size_t>(mesh.face_node(f, v).idx)];
+    if (plane.normal.squaredNorm() == 0) continue;
+    Vec3 h;
+    for (int k = 0; k < 3; ++k) h[k] = plane.normal.dot(mesh.x(mesh.face_node(f, k)) - plane.point);
+    const Mat32 grad = material_gradient(mesh, f, Vec3(h[0], 0, 0), Vec3(h[1], 0, 0), Vec3(h[2], 0, 0));
+    const Vec2 dh = grad.row(0).transpose();
+    const double hv = std::max(std::abs(h[v]), 1e-6);
+    o += dh * dh.transpose() / (hv * hv);
+  }
+  return o / 3.0;
+}
+
+Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& normals, const SizingParams& p,
+                           const std::vector<ObstaclePlane>& planes) {
   auto at = [&](const std::vector<Vec3>& v, int i) { return v[static_cast<std::size_t>(mesh.face_node(f, i).idx)]; };
   const NodeId n0 = mesh.face_node(f, 0), n1 = mesh.face_node(f, 1), n2 = mesh.face_node(f, 2);
   const Mat32 dn = material_gradient(mesh, f, at(normals, 0), at(normals, 1), at(normals, 2));
@@ -76,7 +92,9 @@ Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& 
   const Mat2 curvature = s2 / (p.refine_angle * p.refine_angle);
   const Mat2 velocity = dv.transpose() * dv / (p.refine_velocity * p.refine_velocity);
   const Mat2 compression = compression_metric(dx.transpose() * dx - Mat2::Identity(), s2, p.refine_compression);
-  return tensor_max(tensor_max(curvature, velocity), compression);
+  Mat2 m = tensor_max(tensor_max(curvature, velocity), compression);
+  if (!planes.empty()) m = tensor_max(m, obstacle_metric(mesh, f, planes));
+  return m;
 }
 
 Mat2 clamp_sizing(const Mat2& m, const SizingParams& p) {
@@ -89,10 +107,10 @@ Mat2 clamp_sizing(const Mat2& m, const SizingParams& p) {
   return eig.eigenvectors() * l.asDiagonal() * eig.eigenvectors().transpose();
 }
 
-void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier) {
+void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier, const std::vector<ObstaclePlane>& planes) {
   auto& face = mesh.face_attrs().get_or_add<Mat2>(kFaceSizingAttr, Mat2::Zero());
   const std::vector<Vec3> normals = node_normals(mesh);
-  for (FaceId f : mesh.faces()) face[f] = clamp_sizing(face_sizing_unclamped(mesh, f, normals, p), p);
+  for (FaceId f : mesh.faces()) face[f] = clamp_sizing(face_sizing_unclamped(mesh, f, normals, p, planes), p);
   if (modifier) modifier->modify(mesh, face);
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());
   for (VertId v : mesh.verts()) {

@@ -17,6 +17,13 @@ struct SizingParams {
   double aspect_min = 0.2;            // smallest ratio of the short to the long axis of a face
 };
 
+// The obstacle point nearest to a node and the unit direction from it to the node (zero
+// normal: no obstacle near), for the obstacle-proximity criterion.
+struct ObstaclePlane {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();
+};
+
 // Face attribute holding the face tensors of the last compute_sizing.
 inline constexpr const char* kFaceSizingAttr = "face_sizing";
 
@@ -27,8 +34,14 @@ class FaceSizingModifier {
   virtual void modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing) const = 0;
 };
 
-// The physical tensor of one face before clamping: the largest of the criteria.
-Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& node_normals, const SizingParams& p);
+// The physical tensor of one face before clamping: the largest of the criteria. `planes`, by
+// node index, may be empty (no obstacles).
+Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& node_normals, const SizingParams& p,
+                           const std::vector<ObstaclePlane>& planes = {});
+// Obstacle-proximity criterion (Narain et al. 2012, section 5): with h_v the heights of the
+// face's nodes over the obstacle plane nearest node v, the mean over v of dh dh^T / h_v^2, so
+// that along any edge the gap changes by less than the gap itself.
+Mat2 obstacle_metric(const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes);
 // Eigenvalues clamped to [1/size_max^2, 1/size_min^2], then the smaller raised to at least
 // aspect_min^2 times the larger.
 Mat2 clamp_sizing(const Mat2& m, const SizingParams& p);
@@ -39,7 +52,8 @@ Mat2 tensor_max(const Mat2& a, const Mat2& b);
 
 // Computes face tensors (kFaceSizingAttr), lets `modifier` change them, and averages them onto
 // verts by material area (kSizingAttr, read by remesh()).
-void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier = nullptr);
+void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier = nullptr,
+                    const std::vector<ObstaclePlane>& planes = {});
 
 // A constant isotropic field of size h on every vert (the fixed-resolution baseline).
 void set_uniform_sizing(Mesh& mesh, double h);

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "remesh/remesher.hpp"
 #include "remesh/sizing.hpp"
+#include "collision/obstacle_planes.hpp"
 #include "collision/untangle.hpp"
 
 namespace vdc {
@@ -38,6 +39,7 @@ CollisionMesh collision_mesh(const Mesh& mesh) {
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
     : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
+  for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
   for (auto& g : scene_.garments) {
     if (!g.mesh.is_compact()) g.mesh.compact();
     if (options_.mode == SimMode::Fixed) {
@@ -53,8 +55,14 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
 
 void Simulation::remesh_garments(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::vector<Vec3>> obstacle_x;
+  for (const auto& o : scene_.obstacles) obstacle_x.push_back(o.positions_at(time()));
   for (auto& g : scene_.garments) {
-    compute_sizing(g.mesh, scene_.remeshing);
+    std::vector<Vec3> points(static_cast<std::size_t>(g.mesh.node_capacity()), Vec3::Zero());
+    for (NodeId n : g.mesh.nodes()) points[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
+    const std::vector<ObstaclePlane> planes =
+        nearest_obstacle_planes(points, obstacle_meshes_, obstacle_x, scene_.remeshing.size_max);
+    compute_sizing(g.mesh, scene_.remeshing, nullptr, planes);
     RemeshStats r = remesh(g.mesh);
     stats.splits += r.splits;
     stats.flips += r.flips;
@@ -69,16 +77,12 @@ void Simulation::untangle_cloth(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
   for (const auto& c : constraints(time(), scene_.frame_time)) fixed[static_cast<std::size_t>(c.node)] = 1;
-  std::vector<CollisionMesh> obstacles;
   std::vector<std::vector<Vec3>> obstacle_x;
-  for (const auto& o : scene_.obstacles) {
-    obstacles.push_back(collision_mesh(o.mesh));
-    obstacle_x.push_back(o.positions_at(time()));
-  }
+  for (const auto& o : scene_.obstacles) obstacle_x.push_back(o.positions_at(time()));
   UntangleParams params;
   params.thickness = scene_.collision.thickness;
   params.step = scene_.collision.thickness;
-  const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacles, obstacle_x, params);
+  const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacle_meshes_, obstacle_x, params);
   stats.untangle_moves += r.moves;
   if (r.cloth_pairs + r.obstacle_pairs > 0 && log_) {
     std::ostringstream msg;
@@ -98,9 +102,7 @@ void Simulation::rebuild() {
   LinearSolverParams solver_params = scene_.solver.params;
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
-  std::vector<CollisionMesh> obstacles;
-  for (const auto& o : scene_.obstacles) obstacles.push_back(collision_mesh(o.mesh));
-  collider_ = std::make_unique<Collider>(model_.face_nodes, std::move(obstacles), model_.num_nodes);
+  collider_ = std::make_unique<Collider>(model_.face_nodes, obstacle_meshes_, model_.num_nodes);
   gather_state();
 }
 

@@ -91,6 +91,7 @@ class Simulation {
   ClothModel model_;
   std::vector<int32_t> offsets_;  // first model node of each garment
   std::unique_ptr<ImplicitIntegrator> integrator_;
+  std::vector<CollisionMesh> obstacle_meshes_;  // the obstacles' faces, for collisions and sizing
   std::unique_ptr<Collider> collider_;
   Eigen::VectorXd x_, v_;
 };

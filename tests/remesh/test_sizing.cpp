@@ -87,5 +87,28 @@ TEST(Sizing, VertsAverageTheirFacesByArea) {
   for (VertId v : mesh.verts()) EXPECT_LT((vert[v] - Mat2::Identity() / (0.2 * 0.2)).norm(), 1e-9);
 }
 
+TEST(Sizing, ObstacleMetricResolvesTheGapAlongTheSlope) {
+  // One face, material (0,0), (0.1,0), (0,0.1) placed at (u, 0.01 + 0.5 u, v): its height over the
+  // plane y = 0 grows at 0.5 per metre along u and not at all along v.
+  MeshSource src;
+  src.positions = {Vec3(0, 0.01, 0), Vec3(0.1, 0.06, 0), Vec3(0, 0.01, 0.1)};
+  src.uvs = {Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1)};
+  src.faces = {{Corner{0, 0}, Corner{1, 1}, Corner{2, 2}}};
+  Mesh m = build_mesh(src);
+  const FaceId f = *m.faces().begin();
+  std::vector<ObstaclePlane> planes(3, ObstaclePlane{Vec3(0, 0, 0), Vec3(0, 1, 0)});
+  // Node heights 0.01, 0.06, 0.01: (1/3) (0.25/0.01^2 + 0.25/0.06^2 + 0.25/0.01^2) along u.
+  const double expected = (0.25 / 1e-4 + 0.25 / 0.0036 + 0.25 / 1e-4) / 3;
+  Mat2 o = obstacle_metric(m, f, planes);
+  EXPECT_NEAR(o(0, 0), expected, 1e-9 * expected);
+  EXPECT_NEAR(o(1, 1), 0, 1e-9);
+  EXPECT_NEAR(o(0, 1), 0, 1e-9);
+  // A node with no obstacle near contributes nothing; a plane parallel to the face, nothing.
+  planes[1].normal = Vec3::Zero();
+  EXPECT_NEAR(obstacle_metric(m, f, planes)(0, 0), (0.25 / 1e-4 + 0.25 / 1e-4) / 3, 1e-6);
+  std::vector<ObstaclePlane> parallel(3, ObstaclePlane{Vec3(0, 0, 0), Vec3(0.5, -1, 0).normalized()});
+  EXPECT_LT(obstacle_metric(m, f, parallel).norm(), 1e-9);
+}
+
 }  // namespace
 }  // namespace vdc

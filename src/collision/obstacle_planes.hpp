@@ -1,0 +1,15 @@
+// The obstacle point nearest to each cloth node, for the obstacle-proximity sizing criterion
+// (Narain et al. 2012, section 5): searched within a radius, with the direction from that point
+// to the node (the obstacle's face normal when the node lies on it).
+#pragma once
+#include <vector>
+
+#include "collision/collider.hpp"
+#include "remesh/sizing.hpp"
+
+namespace vdc {
+
+std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius);
+
+}  // namespace vdc
