@@ -111,6 +111,15 @@ void line_crossings(const Vec3& p, const Vec3& dp, const Vec3& a, const Vec3& da
   quadratic_roots(c0, c1, c2, out);
 }
 
+// How far the distance between the primitives can change over the step. The distance does not
+// change under a common translation, so take out the mean displacement: moving every point by
+// at most m (relative to that) changes the distance by at most 2 m. A pair that starts farther
+// apart than this cannot touch during the step, however fast the pair moves together.
+double relative_reach(const Vec3& d0, const Vec3& d1, const Vec3& d2, const Vec3& d3) {
+  const Vec3 mean = 0.25 * (d0 + d1 + d2 + d3);
+  return 2 * std::max({(d0 - mean).norm(), (d1 - mean).norm(), (d2 - mean).norm(), (d3 - mean).norm()});
+}
+
 }  // namespace
 
 std::array<double, 4> coplanarity_cubic(const Vec3& e1, const Vec3& de1, const Vec3& e2, const Vec3& de2, const Vec3& w,
@@ -122,9 +131,7 @@ std::array<double, 4> coplanarity_cubic(const Vec3& e1, const Vec3& de1, const V
 Impact vertex_face_ccd(const Vec3& p0, const Vec3& p1, const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1,
                        const Vec3& c0, const Vec3& c1, double eta) {
   const Vec3 dp = p1 - p0, da = a1 - a0, db = b1 - b0, dc = c1 - c0;
-  // Moving every point by at most m changes the distance by at most 2 m: a pair that starts
-  // farther apart than that cannot touch during the step.
-  const double reach = 2 * std::max({dp.norm(), da.norm(), db.norm(), dc.norm()}) + eta;
+  const double reach = relative_reach(dp, da, db, dc) + eta;
   if (point_triangle_distance(p0, a0, b0, c0) > reach) return {};
   const auto k = coplanarity_cubic(b0 - a0, db - da, c0 - a0, dc - da, p0 - a0, dp - da);
   auto at = [&](double t) { return std::array<Vec3, 4>{p0 + t * dp, a0 + t * da, b0 + t * db, c0 + t * dc}; };
@@ -145,7 +152,7 @@ Impact vertex_face_ccd(const Vec3& p0, const Vec3& p1, const Vec3& a0, const Vec
 Impact edge_edge_ccd(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const Vec3& c0, const Vec3& c1,
                      const Vec3& d0, const Vec3& d1, double eta) {
   const Vec3 da = a1 - a0, db = b1 - b0, dc = c1 - c0, dd = d1 - d0;
-  const double reach = 2 * std::max({da.norm(), db.norm(), dc.norm(), dd.norm()}) + eta;
+  const double reach = relative_reach(da, db, dc, dd) + eta;
   if (segment_segment_distance(a0, b0, c0, d0) > reach) return {};
   const auto k = coplanarity_cubic(b0 - a0, db - da, d0 - c0, dd - dc, c0 - a0, dc - da);
   auto at = [&](double t) { return std::array<Vec3, 4>{a0 + t * da, b0 + t * db, c0 + t * dc, d0 + t * dd}; };

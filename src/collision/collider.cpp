@@ -121,13 +121,9 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     face_bvh = &cloth_face_tree_.update(face_boxes);
     edge_bvh = &cloth_edge_tree_.update(edge_boxes);
 
-    // Candidate tests are gathered serially from the hierarchies, then run in parallel; each
-    // writes only its own result slot, and results are taken in gathering order.
-    struct Candidate {
-      bool vertex_face;
-      std::array<PointRef, 4> pts;
-    };
-    std::vector<Candidate> candidates;
+    // Every query primitive (cloth vertex, obstacle vertex, cloth edge) traverses its hierarchy
+    // and tests its candidates in parallel, into its own list; the lists are taken in primitive
+    // order, so the results do not depend on the thread count.
     auto wanted = [&](std::initializer_list<PointRef> pts) {
       if (round == 0) return true;  // later rounds: only pairs a projection has moved
       for (const PointRef& p : pts)
@@ -174,55 +170,73 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       if (n.dot(sep0()) < 0) n = -n;
       add_constraint({a, b, c, d}, {1 - s, s, -(1 - u), -u}, n, out);
     };
-    auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri) {
-      if (wanted({p, tri[0], tri[1], tri[2]})) candidates.push_back({true, {p, tri[0], tri[1], tri[2]}});
+    using Hits = std::vector<ImpactConstraint>;
+    auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri, Hits& out) {
+      if (!wanted({p, tri[0], tri[1], tri[2]})) return;
+      std::optional<ImpactConstraint> hit;
+      vertex_face(p, tri, hit);
+      if (hit) out.push_back(*hit);
     };
-    auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d) {
-      if (wanted({a, b, c, d})) candidates.push_back({false, {a, b, c, d}});
+    auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, Hits& out) {
+      if (!wanted({a, b, c, d})) return;
+      std::optional<ImpactConstraint> hit;
+      edge_edge(a, b, c, d, hit);
+      if (hit) out.push_back(*hit);
     };
 
     // Cloth vertices against cloth and obstacle faces.
+    std::vector<Hits> vertex_hits(static_cast<std::size_t>(num_nodes_));
+#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
     for (int32_t v = 0; v < num_nodes_; ++v) {
       if (!cloth_node_used[static_cast<std::size_t>(v)]) continue;
       const PointRef p{-1, v};
       const Aabb box = path_box({p});
+      Hits& out = vertex_hits[static_cast<std::size_t>(v)];
       face_bvh->query(box, [&](int32_t f) {
         const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
-        if (t[0] != v && t[1] != v && t[2] != v) vf(p, cloth_tri(static_cast<std::size_t>(f)));
+        if (t[0] != v && t[1] != v && t[2] != v) vf(p, cloth_tri(static_cast<std::size_t>(f)), out);
       });
       for (std::size_t o = 0; o < obstacles_.size(); ++o)
-        obstacle_face_bvh[o]->query(box, [&](int32_t f) { vf(p, obstacle_tri(o, static_cast<std::size_t>(f))); });
+        obstacle_face_bvh[o]->query(box, [&](int32_t f) { vf(p, obstacle_tri(o, static_cast<std::size_t>(f)), out); });
     }
     // Obstacle vertices against cloth faces.
-    for (std::size_t o = 0; o < obstacles_.size(); ++o)
-      for (std::size_t v = 0; v < obstacle_start[o].size(); ++v) {
-        const PointRef p{static_cast<int32_t>(o), static_cast<int32_t>(v)};
-        face_bvh->query(path_box({p}), [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f))); });
-      }
-    // Edges against edges.
-    edge_bvh->self_pairs([&](int32_t ea, int32_t eb) {
-      const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = cloth_edges_[static_cast<std::size_t>(eb)];
-      if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
-      ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]});
-    });
+    std::vector<std::vector<Hits>> obstacle_hits(obstacles_.size());
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-      const auto oi = static_cast<int32_t>(o);
-      edge_bvh->pairs_with(*obstacle_edge_bvh[o], [&](int32_t ea, int32_t eo) {
-        const auto &A = cloth_edges_[static_cast<std::size_t>(ea)], &B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
-        ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]});
-      });
+      const auto nv = static_cast<int32_t>(obstacle_start[o].size());
+      obstacle_hits[o].resize(static_cast<std::size_t>(nv));
+#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
+      for (int32_t v = 0; v < nv; ++v) {
+        const PointRef p{static_cast<int32_t>(o), v};
+        face_bvh->query(path_box({p}), [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]); });
+      }
     }
-
-    std::vector<std::optional<ImpactConstraint>> results(candidates.size());
-#pragma omp parallel for schedule(dynamic, 64) num_threads(params.threads)
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-      const Candidate& c = candidates[i];
-      if (c.vertex_face) vertex_face(c.pts[0], {c.pts[1], c.pts[2], c.pts[3]}, results[i]);
-      else edge_edge(c.pts[0], c.pts[1], c.pts[2], c.pts[3], results[i]);
+    // Cloth edges against cloth edges (each pair once, from its lower edge) and obstacle edges.
+    const auto num_edges = static_cast<int32_t>(cloth_edges_.size());
+    std::vector<Hits> edge_hits(cloth_edges_.size());
+#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
+    for (int32_t ea = 0; ea < num_edges; ++ea) {
+      const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+      const Aabb box = path_box({{-1, A[0]}, {-1, A[1]}});
+      Hits& out = edge_hits[static_cast<std::size_t>(ea)];
+      edge_bvh->query(box, [&](int32_t eb) {
+        if (eb <= ea) return;
+        const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
+        if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
+        ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, out);
+      });
+      for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+        const auto oi = static_cast<int32_t>(o);
+        obstacle_edge_bvh[o]->query(box, [&](int32_t eo) {
+          const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
+          ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, out);
+        });
+      }
     }
     std::vector<ImpactConstraint> found;
-    for (auto& r : results)
-      if (r) found.push_back(*r);
+    for (const auto& list : vertex_hits) found.insert(found.end(), list.begin(), list.end());
+    for (const auto& lists : obstacle_hits)
+      for (const auto& list : lists) found.insert(found.end(), list.begin(), list.end());
+    for (const auto& list : edge_hits) found.insert(found.end(), list.begin(), list.end());
 
     stats.impacts += static_cast<int>(found.size());
     if (found.empty()) {

@@ -1,6 +1,8 @@
 // Triangle-triangle intersection by edge-triangle crossings (after Moller 1997).
 #include "collision/intersection.hpp"
 
+#include <cmath>
+
 #include "core/bvh.hpp"
 
 namespace vdc {
@@ -10,7 +12,13 @@ double orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { retu
 }  // namespace
 
 bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double sp = orient(a, b, c, p), sq = orient(a, b, c, q);
+  double sp = orient(a, b, c, p), sq = orient(a, b, c, q);
+  // Sides within rounding of the plane count as on it (1e-12 of the lengths involved), so that
+  // triangles of one flat sheet, which rounding leaves a few ulps off each other's plane, are
+  // not taken for crossings.
+  const double tol = 1e-12 * (b - a).cross(c - a).norm() * ((p - a).norm() + (q - a).norm());
+  if (std::abs(sp) <= tol) sp = 0;
+  if (std::abs(sq) <= tol) sq = 0;
   if ((sp > 0 && sq > 0) || (sp < 0 && sq < 0) || (sp == 0 && sq == 0)) return false;
   // The segment's line passes through the triangle when it sees the three edges turning the same way.
   const double e0 = orient(p, q, a, b), e1 = orient(p, q, b, c), e2 = orient(p, q, c, a);

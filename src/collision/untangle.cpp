@@ -63,7 +63,9 @@ class Untangler {
       report.remaining = cloth_pairs + obstacle_pairs;
       if (report.remaining == 0 || it == params_.max_iterations) break;
       ++report.iterations;
-      report.moves += move();
+      const int moved = move();
+      report.moves += moved;
+      if (moved == 0) break;  // nothing can move (crossings that only touch, or held nodes)
     }
     return report;
   }

@@ -67,32 +67,44 @@ SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
   const auto ne = static_cast<int64_t>(model.bend_nodes.size());
   matrix_buffer_.assign(static_cast<std::size_t>(nf * kFaceMat + ne * kBendMat), 0.0);
   rhs_buffer_.assign(static_cast<std::size_t>(nf * kFaceVec + ne * kBendVec), 0.0);
-  std::vector<std::pair<int32_t, Contribution>> contrib;
-  std::vector<std::pair<int32_t, int64_t>> parts;
-  auto add_element = [&](const auto& nodes, int64_t mat_offset, int64_t vec_offset, int32_t ld) {
+  // Each element block (a, b) lands in one slot, each element vector part in one node; the
+  // lists are bucketed by slot and node in element order (a counting sort: stable and linear).
+  slot_contrib_start_.assign(static_cast<std::size_t>(slots) + 1, 0);
+  node_force_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  auto for_each_element = [&](auto&& visit) {
+    for (int64_t f = 0; f < nf; ++f) visit(model.face_nodes[static_cast<std::size_t>(f)], f * kFaceMat, f * kFaceVec, 9);
+    for (int64_t e = 0; e < ne; ++e)
+      visit(model.bend_nodes[static_cast<std::size_t>(e)], nf * kFaceMat + e * kBendMat, nf * kFaceVec + e * kBendVec, 12);
+  };
+  std::vector<int32_t> element_slots;  // slot of every block, in visiting order
+  for_each_element([&](const auto& nodes, int64_t, int64_t, int32_t) {
+    for (int32_t a : nodes) {
+      ++node_force_start_[static_cast<std::size_t>(a) + 1];
+      for (int32_t b : nodes) {
+        const int32_t s = slot_of(a, b);
+        element_slots.push_back(s);
+        ++slot_contrib_start_[static_cast<std::size_t>(s) + 1];
+      }
+    }
+  });
+  for (int32_t s = 0; s < slots; ++s) slot_contrib_start_[static_cast<std::size_t>(s) + 1] += slot_contrib_start_[static_cast<std::size_t>(s)];
+  for (int32_t i = 0; i < n; ++i) node_force_start_[static_cast<std::size_t>(i) + 1] += node_force_start_[static_cast<std::size_t>(i)];
+  contributions_.resize(element_slots.size());
+  force_parts_.resize(static_cast<std::size_t>(node_force_start_.back()));
+  std::vector<int32_t> slot_fill(slot_contrib_start_.begin(), slot_contrib_start_.end() - 1);
+  std::vector<int32_t> node_fill(node_force_start_.begin(), node_force_start_.end() - 1);
+  std::size_t visited = 0;
+  for_each_element([&](const auto& nodes, int64_t mat_offset, int64_t vec_offset, int32_t ld) {
     const int k = static_cast<int>(nodes.size());
     for (int a = 0; a < k; ++a) {
-      parts.emplace_back(nodes[static_cast<std::size_t>(a)], vec_offset + 3 * a);
-      for (int b = 0; b < k; ++b)
-        contrib.emplace_back(slot_of(nodes[static_cast<std::size_t>(a)], nodes[static_cast<std::size_t>(b)]),
-                             Contribution{mat_offset + static_cast<int64_t>(3 * b) * ld + 3 * a, ld});
+      force_parts_[static_cast<std::size_t>(node_fill[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a)])]++)] = vec_offset + 3 * a;
+      for (int b = 0; b < k; ++b) {
+        const int32_t s = element_slots[visited++];
+        contributions_[static_cast<std::size_t>(slot_fill[static_cast<std::size_t>(s)]++)] =
+            Contribution{mat_offset + static_cast<int64_t>(3 * b) * ld + 3 * a, ld};
+      }
     }
-  };
-  for (int64_t f = 0; f < nf; ++f) add_element(model.face_nodes[static_cast<std::size_t>(f)], f * kFaceMat, f * kFaceVec, 9);
-  for (int64_t e = 0; e < ne; ++e)
-    add_element(model.bend_nodes[static_cast<std::size_t>(e)], nf * kFaceMat + e * kBendMat, nf * kFaceVec + e * kBendVec, 12);
-  std::stable_sort(contrib.begin(), contrib.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
-  std::stable_sort(parts.begin(), parts.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
-  slot_contrib_start_.assign(static_cast<std::size_t>(slots) + 1, 0);
-  for (const auto& [s, c] : contrib) ++slot_contrib_start_[static_cast<std::size_t>(s) + 1];
-  for (int32_t s = 0; s < slots; ++s) slot_contrib_start_[static_cast<std::size_t>(s) + 1] += slot_contrib_start_[static_cast<std::size_t>(s)];
-  contributions_.reserve(contrib.size());
-  for (const auto& [s, c] : contrib) contributions_.push_back(c);
-  node_force_start_.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (const auto& [node, off] : parts) ++node_force_start_[static_cast<std::size_t>(node) + 1];
-  for (int32_t i = 0; i < n; ++i) node_force_start_[static_cast<std::size_t>(i) + 1] += node_force_start_[static_cast<std::size_t>(i)];
-  force_parts_.reserve(parts.size());
-  for (const auto& [node, off] : parts) force_parts_.push_back(off);
+  });
 }
 
 int32_t SystemAssembler::slot_of(int32_t row_node, int32_t col_node) const {
