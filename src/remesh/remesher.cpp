@@ -89,7 +89,7 @@ int collapse_all(Mesh& mesh, const RemeshOptions& o) {
     for (const auto& [s2, e] : candidates) {
       if (!mesh.alive(e)) continue;
       for (int remove = 0; remove < 2; ++remove) {
-        if (!can_collapse(mesh, e, remove) || collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin) continue;
+        if (collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove)) continue;
         collapse_edge(mesh, e, remove);
         ++this_pass;
         break;
