@@ -15,22 +15,27 @@ namespace vdc {
 
 namespace {
 
-// Unique edges of a triangle list, and for each face the indices of its three edges.
+// Unique edges of a triangle list, and for each face the indices of its three edges (sorted
+// by their end nodes, then numbered).
 void edges_of(const std::vector<std::array<int32_t, 3>>& faces, std::vector<std::array<int32_t, 2>>& edges,
               std::vector<std::array<int32_t, 3>>& face_edges) {
-  std::map<std::pair<int32_t, int32_t>, int32_t> index;
-  face_edges.resize(faces.size());
+  struct Side {
+    int32_t lo, hi;
+    int32_t slot;  // 3 * face + corner
+  };
+  std::vector<Side> sides;
+  sides.reserve(3 * faces.size());
   for (std::size_t f = 0; f < faces.size(); ++f)
     for (int i = 0; i < 3; ++i) {
-      int32_t a = faces[f][static_cast<std::size_t>(i)], b = faces[f][static_cast<std::size_t>((i + 1) % 3)];
-      auto key = std::make_pair(std::min(a, b), std::max(a, b));
-      auto it = index.find(key);
-      if (it == index.end()) {
-        it = index.emplace(key, static_cast<int32_t>(edges.size())).first;
-        edges.push_back({key.first, key.second});
-      }
-      face_edges[f][static_cast<std::size_t>(i)] = it->second;
+      const int32_t a = faces[f][static_cast<std::size_t>(i)], b = faces[f][static_cast<std::size_t>((i + 1) % 3)];
+      sides.push_back({std::min(a, b), std::max(a, b), static_cast<int32_t>(3 * f) + i});
     }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.slot < y.slot; });
+  face_edges.resize(faces.size());
+  for (std::size_t k = 0; k < sides.size(); ++k) {
+    if (k == 0 || sides[k].lo != sides[k - 1].lo || sides[k].hi != sides[k - 1].hi) edges.push_back({sides[k].lo, sides[k].hi});
+    face_edges[static_cast<std::size_t>(sides[k].slot / 3)][static_cast<std::size_t>(sides[k].slot % 3)] = static_cast<int32_t>(edges.size()) - 1;
+  }
 }
 
 // A point of the scene: a cloth node (obstacle < 0) or an obstacle vertex.

@@ -2,15 +2,12 @@
 #include "collision/obstacle_planes.hpp"
 
 #include "collision/distance.hpp"
-#include <algorithm>
-
 #include "core/bvh.hpp"
 
 namespace vdc {
 
 std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
-                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius,
-                                                   double first_radius) {
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius) {
   std::vector<ObstaclePlane> planes(points.size());
   std::vector<double> best(points.size(), radius);
   std::vector<Bvh> trees;
@@ -20,30 +17,23 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
       for (int32_t v : obstacles[o].faces[f]) boxes[f].grow(obstacle_x[o][static_cast<std::size_t>(v)]);
     trees.emplace_back(boxes);
   }
-  // Search boxes grow by 4 from first_radius to radius; a point found within the current box's
-  // radius is the nearest, since anything nearer lies in that box too.
   for (std::size_t i = 0; i < points.size(); ++i) {
     const Vec3& p = points[i];
-    for (double r = std::min(first_radius, radius);; r = std::min(4 * r, radius)) {
-      Aabb box;
-      box.grow(p);
-      box.pad(r);
-      for (std::size_t o = 0; o < obstacles.size(); ++o) {
-        const auto& ox = obstacle_x[o];
-        const auto& faces = obstacles[o].faces;
-        auto corner = [&](std::size_t f, int k) -> const Vec3& { return ox[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(k)])]; };
-        trees[o].query(box, [&](int32_t fi) {
-          const auto f = static_cast<std::size_t>(fi);
-          const Vec3 w = closest_triangle_weights(p, corner(f, 0), corner(f, 1), corner(f, 2));
-          const Vec3 q = w[0] * corner(f, 0) + w[1] * corner(f, 1) + w[2] * corner(f, 2);
-          const double d = (p - q).norm();
-          if (d >= best[i]) return;
-          best[i] = d;
+    for (std::size_t o = 0; o < obstacles.size(); ++o) {
+      const auto& ox = obstacle_x[o];
+      const auto& faces = obstacles[o].faces;
+      auto corner = [&](std::size_t f, int k) -> const Vec3& { return ox[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(k)])]; };
+      trees[o].nearest(p, best[i], [&](int32_t fi) {
+        const auto f = static_cast<std::size_t>(fi);
+        const Vec3 w = closest_triangle_weights(p, corner(f, 0), corner(f, 1), corner(f, 2));
+        const Vec3 q = w[0] * corner(f, 0) + w[1] * corner(f, 1) + w[2] * corner(f, 2);
+        const double d = (p - q).norm();
+        if (d < best[i]) {
           planes[i].point = q;
           planes[i].normal = d > 1e-9 ? Vec3((p - q) / d) : Vec3(area_normal(corner(f, 0), corner(f, 1), corner(f, 2)).normalized());
-        });
-      }
-      if (best[i] <= r || r >= radius) break;
+        }
+        return d;
+      });
     }
   }
   return planes;

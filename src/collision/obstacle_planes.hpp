@@ -1,7 +1,7 @@
 // The obstacle point nearest to each cloth node, for the obstacle-proximity sizing criterion
 // (Narain et al. 2012, section 5): searched within a radius, with the direction from that point
-// to the node (the obstacle's face normal when the node lies on it). The search starts within
-// first_radius and widens, so nodes near an obstacle cost little.
+// to the node (the obstacle's face normal when the node lies on it). Branch and bound over each
+// obstacle's hierarchy.
 #pragma once
 #include <vector>
 
@@ -11,7 +11,6 @@
 namespace vdc {
 
 std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
-                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius,
-                                                   double first_radius);
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius);
 
 }  // namespace vdc

@@ -2,6 +2,7 @@
 // in place when positions move (boxes may be swept: the union over a step), rebuilt when the
 // topology changes. Queries list overlapping leaf pairs within one tree or between two.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <limits>
@@ -28,6 +29,8 @@ struct Aabb {
     hi.array() += d;
   }
   bool overlaps(const Aabb& b) const { return (lo.array() <= b.hi.array()).all() && (b.lo.array() <= hi.array()).all(); }
+  // Distance from p to the box (0 inside).
+  double distance(const Vec3& p) const { return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm(); }
 };
 
 class Bvh {
@@ -58,6 +61,29 @@ class Bvh {
         stack[static_cast<std::size_t>(top++)] = n.left;
         stack[static_cast<std::size_t>(top++)] = n.right;
       }
+    }
+  }
+
+  // Branch and bound for the nearest primitive to p: `dist(i)` returns primitive i's distance
+  // and is called only for primitives whose box is nearer than the best so far, which starts
+  // at `best` (a search radius) and ends as the smallest distance found.
+  template <class F>
+  void nearest(const Vec3& p, double& best, F&& dist) const {
+    if (leaf_box_.empty()) return;
+    std::array<int32_t, 128> stack;
+    int top = 0;
+    stack[static_cast<std::size_t>(top++)] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
+      if (n.box.distance(p) >= best) continue;
+      if (n.left < 0) {
+        best = std::min(best, dist(n.prim));
+        continue;
+      }
+      // The nearer child goes on top, to be visited first.
+      const double dl = nodes_[static_cast<std::size_t>(n.left)].box.distance(p), dr = nodes_[static_cast<std::size_t>(n.right)].box.distance(p);
+      stack[static_cast<std::size_t>(top++)] = dl <= dr ? n.right : n.left;
+      stack[static_cast<std::size_t>(top++)] = dl <= dr ? n.left : n.right;
     }
   }
 

@@ -26,16 +26,59 @@ void cholmod_serial(F&& f) {
   }
 }
 
-// Fill-reducing ordering for CHOLMOD: METIS nested dissection. On garment meshes (3x3 blocks,
-// bending stencils) it gives 13% fewer flops than CHOLMOD's default AMD choice and about 20%
-// faster factorizations (bench/RESULTS.md).
-template <class Factorization>
-void prefer_nested_dissection(Factorization& llt) {
-  if constexpr (requires { llt.cholmod(); }) {
-    llt.cholmod().nmethods = 1;
-    llt.cholmod().method[0].ordering = CHOLMOD_METIS;
+// CHOLMOD's supernodal Cholesky with a fill-reducing ordering computed on the matrix's 3x3
+// block graph: METIS nested dissection of the n nodes rather than the 3n unknowns, expanded to
+// the unknowns of each node in turn. The same ordering quality (on garment meshes METIS gives 13%
+// fewer flops than CHOLMOD's default AMD choice and about 20% faster factorizations,
+// bench/RESULTS.md), at a fraction of the cost of ordering the scalar graph: adaptive runs
+// analyze a new pattern every frame.
+class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+ public:
+  void analyzePattern(const SparseMatrix& a) {
+    const auto n = static_cast<std::size_t>(a.rows() / 3);
+    if (a.rows() != 3 * static_cast<int64_t>(n) || n == 0) {
+      Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>::analyzePattern(a);
+      return;
+    }
+    // Node graph from the first column of each block column (the pattern is blockwise).
+    std::vector<int> col_start(n + 1, 0), rows;
+    for (std::size_t j = 0; j < n; ++j) {
+      for (SparseMatrix::InnerIterator it(a, static_cast<Eigen::Index>(3 * j)); it; ++it)
+        if (it.row() % 3 == 0) rows.push_back(static_cast<int>(it.row() / 3));
+      col_start[j + 1] = static_cast<int>(rows.size());
+    }
+    cholmod_sparse g{};
+    g.nrow = g.ncol = n;
+    g.nzmax = rows.size();
+    g.p = col_start.data();
+    g.i = rows.data();
+    g.stype = 1;  // symmetric, upper part used
+    g.itype = CHOLMOD_INT;
+    g.xtype = CHOLMOD_PATTERN;
+    g.dtype = CHOLMOD_DOUBLE;
+    g.sorted = 1;
+    g.packed = 1;
+    std::vector<int> node_perm(n), perm(3 * n);
+    if (!cholmod_metis(&g, nullptr, 0, 1, node_perm.data(), &cholmod())) {
+      Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>::analyzePattern(a);
+      return;
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      for (int r = 0; r < 3; ++r) perm[3 * k + static_cast<std::size_t>(r)] = 3 * node_perm[k] + r;
+    if (m_cholmodFactor) {
+      cholmod_free_factor(&m_cholmodFactor, &cholmod());
+      m_cholmodFactor = nullptr;
+    }
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = CHOLMOD_GIVEN;
+    cholmod_sparse view = Eigen::viewAsCholmod(a.selfadjointView<Eigen::Lower>());
+    m_cholmodFactor = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &cholmod());
+    m_isInitialized = true;
+    m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
   }
-}
+};
 
 double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
   double nb = b.norm();
@@ -45,7 +88,6 @@ double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const 
 template <class Factorization>
 class DirectSolver final : public LinearSolver {
  public:
-  DirectSolver() { prefer_nested_dissection(llt_); }
   void analyze(const SparseMatrix& a) override {
     cholmod_serial([&] { llt_.analyzePattern(a); });
   }
@@ -109,7 +151,7 @@ void symmetric_multiply(const SparseMatrix& a, const Eigen::VectorXd& p, Eigen::
 // fresh factorization, so the answer always meets the tolerance.
 class CholmodPcgSolver final : public LinearSolver {
  public:
-  explicit CholmodPcgSolver(const LinearSolverParams& p) : params_(p) { prefer_nested_dissection(llt_); }
+  explicit CholmodPcgSolver(const LinearSolverParams& p) : params_(p) {}
   void analyze(const SparseMatrix& a) override {
     cholmod_serial([&] { llt_.analyzePattern(a); });
     have_factor_ = false;
@@ -168,7 +210,7 @@ class CholmodPcgSolver final : public LinearSolver {
   }
 
   LinearSolverParams params_;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+  BlockOrderedLLT llt_;
   bool have_factor_ = false, refactor_ = false;
   Eigen::VectorXd r_, z_, p_, ap_;
   double rz_old_ = 0;
@@ -200,7 +242,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const Li
     case LinearSolverKind::CholmodPcg:
       return std::make_unique<CholmodPcgSolver>(params);
     case LinearSolverKind::Cholmod:
-      return std::make_unique<DirectSolver<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>>();
+      return std::make_unique<DirectSolver<BlockOrderedLLT>>();
     case LinearSolverKind::SimplicialLdlt:
       return std::make_unique<DirectSolver<Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>>>();
     case LinearSolverKind::ConjugateGradient:

@@ -61,7 +61,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
     std::vector<Vec3> points(static_cast<std::size_t>(g.mesh.node_capacity()), Vec3::Zero());
     for (NodeId n : g.mesh.nodes()) points[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
     const std::vector<ObstaclePlane> planes =
-        nearest_obstacle_planes(points, obstacle_meshes_, obstacle_x, scene_.remeshing.size_max, 2 * scene_.remeshing.size_min);
+        nearest_obstacle_planes(points, obstacle_meshes_, obstacle_x, scene_.remeshing.size_max);
     compute_sizing(g.mesh, scene_.remeshing, nullptr, planes);
     RemeshStats r = remesh(g.mesh);
     stats.splits += r.splits;

@@ -3,7 +3,12 @@
 // beyond the band.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "collision/collider.hpp"
+#include "collision/distance.hpp"
+#include "collision/obstacle_planes.hpp"
+#include "core/mesh_build.hpp"
 
 namespace vdc {
 namespace {
@@ -105,6 +110,38 @@ TEST(Proximity, CrossingEdgesGiveAnEdgePairAndObstaclesPushOutward) {
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_NEAR(pairs[0].distance, -0.001, 1e-12);
   EXPECT_NEAR(pairs[0].normal.y(), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace vdc
+
+namespace vdc {
+namespace {
+
+TEST(ObstaclePlanes, NearestPointMatchesBruteForce) {
+  const MeshSource ball = make_icosphere(0.1, 2);
+  CollisionMesh sphere;
+  for (const auto& f : ball.faces) sphere.faces.push_back({f[0].node, f[1].node, f[2].node});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-0.3, 0.3);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 300; ++i) points.emplace_back(U(rng), U(rng), U(rng));
+  const double radius = 0.2;
+  auto planes = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double best = radius;
+    for (const auto& f : sphere.faces)
+      best = std::min(best, point_triangle_distance(points[i], ball.positions[static_cast<std::size_t>(f[0])],
+                                                     ball.positions[static_cast<std::size_t>(f[1])], ball.positions[static_cast<std::size_t>(f[2])]));
+    if (best < radius) {
+      ASSERT_GT(planes[i].normal.norm(), 0.5) << i;
+      EXPECT_NEAR((points[i] - planes[i].point).norm(), best, 1e-12) << i;
+      // The normal points from the obstacle point to the node.
+      EXPECT_NEAR(planes[i].normal.dot(points[i] - planes[i].point), best, 1e-12) << i;
+    } else {
+      EXPECT_EQ(planes[i].normal.norm(), 0) << i;
+    }
+  }
 }
 
 }  // namespace
