@@ -109,8 +109,6 @@ std::string format_duration(double s) {
 
 int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool interactive) {
   Scene scene = load_scene(args.scene);
-  if (args.mode == SimMode::View)
-    throw UsageError("--mode view is not yet available; use --mode fixed or --mode adaptive");
   if (args.frames) scene.frames = *args.frames;
   const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::string dir = args.out.empty() ? "out/" + scene.name : args.out;

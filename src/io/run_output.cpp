@@ -7,16 +7,18 @@
 
 #include "core/error.hpp"
 #include "io/obj.hpp"
+#include "io/ply.hpp"
 
 namespace vdc {
 
 namespace fs = std::filesystem;
 
 namespace {
-std::string frame_file(const std::string& dir, const std::string& kind, const std::string& name, int frame) {
+std::string frame_file(const std::string& dir, const std::string& kind, const std::string& name, int frame,
+                       const std::string& extension = ".obj") {
   char num[16];
   std::snprintf(num, sizeof num, "%04d", frame);
-  return dir + "/frames/" + kind + "_" + name + "." + num + ".obj";
+  return dir + "/frames/" + kind + "_" + name + "." + num + extension;
 }
 }  // namespace
 
@@ -26,7 +28,8 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
   for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames")) {
     const std::string name = entry.path().filename().string();
-    if (entry.path().extension() == ".obj" && (name.rfind("cloth_", 0) == 0 || name.rfind("obstacle_", 0) == 0))
+    if ((entry.path().extension() == ".obj" || entry.path().extension() == ".ply") &&
+        (name.rfind("cloth_", 0) == 0 || name.rfind("obstacle_", 0) == 0))
       fs::remove(entry.path());
   }
   fs::remove(fs::path(dir) / "summary.json", ec);
@@ -34,24 +37,30 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   if (!stats_) throw InputError(dir + "/stats.csv", "", "cannot write");
   stats_ << "frame,faces,vertices,seconds,substeps,halvings,solver_iterations,factorizations,assemble_seconds,solve_seconds,"
             "remesh_seconds,splits,flips,collapses,collision_seconds,impacts,collision_iterations,collision_fallbacks,kinetic_energy,gravitational_energy,elastic_energy,"
-            "proximity_pairs,untangle_moves\n";
+            "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds\n";
 }
 
 void RunOutput::write_frame(const Simulation& sim, int frame) const {
   for (const auto& g : sim.scene().garments)
     if (!write_obj(g.mesh, frame_file(dir_, "cloth", g.name, frame)))
       throw InputError(frame_file(dir_, "cloth", g.name, frame), "", "cannot write");
+  // View mode: each garment's faces with their view factors, beside the OBJ.
+  for (const auto& g : sim.scene().garments)
+    if (g.mesh.face_attrs().has(kViewFactorAttr) &&
+        !write_ply_with_face_values(g.mesh, frame_file(dir_, "cloth", g.name, frame, ".ply"), "view", kViewFactorAttr))
+      throw InputError(frame_file(dir_, "cloth", g.name, frame, ".ply"), "", "cannot write");
   for (const auto& o : sim.scene().obstacles)
     if (!write_obj(o.mesh, frame_file(dir_, "obstacle", o.name, frame)))
       throw InputError(frame_file(dir_, "obstacle", o.name, frame), "", "cannot write");
 }
 
 void RunOutput::write_stats_row(const FrameStats& s) {
-  char line[512];
-  std::snprintf(line, sizeof line, "%d,%d,%d,%.6f,%d,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d,%d,%.6f,%d,%d,%d,%.9g,%.9g,%.9g,%d,%d\n", s.frame, s.faces, s.vertices, s.seconds,
+  char line[1024];
+  std::snprintf(line, sizeof line, "%d,%d,%d,%.6f,%d,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d,%d,%.6f,%d,%d,%d,%.9g,%.9g,%.9g,%d,%d,%d,%d,%d,%.6f\n", s.frame, s.faces, s.vertices, s.seconds,
                 s.substeps, s.halvings, s.solver_iterations, s.factorizations, s.assemble_seconds, s.solve_seconds, s.remesh_seconds, s.splits, s.flips, s.collapses, s.collision_seconds, s.impacts, s.collision_iterations,
                 s.collision_fallbacks, s.energy.kinetic,
-                s.energy.gravitational, s.energy.elastic, s.proximities, s.untangle_moves);
+                s.energy.gravitational, s.energy.elastic, s.proximities, s.untangle_moves, s.visible_faces,
+                s.back_facing_faces, s.out_of_frame_faces, s.view_seconds);
   stats_ << line << std::flush;
   if (rows_ == 0) min_faces_ = max_faces_ = s.faces;
   min_faces_ = std::min(min_faces_, s.faces);

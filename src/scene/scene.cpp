@@ -209,6 +209,56 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
   return o;
 }
 
+// The `camera` block: lens parameters and keyframes [{"time", "position", "target", "cut"}].
+CameraPath parse_camera(const JsonValue& j) {
+  j.only_keys({"fov", "width", "height", "near", "far", "up", "keys"});
+  Camera lens;
+  lens.fov_y_degrees = j.positive_or("fov", lens.fov_y_degrees);
+  if (lens.fov_y_degrees >= 180) j.at("fov").fail("must be below 180 degrees");
+  const long long w = j.integer_or("width", lens.width), h = j.integer_or("height", lens.height);
+  if (w < 1 || w > 100000) j.at("width").fail("must be between 1 and 100000 pixels");
+  if (h < 1 || h > 100000) j.at("height").fail("must be between 1 and 100000 pixels");
+  lens.width = static_cast<int>(w);
+  lens.height = static_cast<int>(h);
+  lens.near = j.positive_or("near", lens.near);
+  lens.far = j.positive_or("far", lens.far);
+  if (lens.far <= lens.near) j.at("far").fail("must be beyond near");
+  lens.up = j.vec3_or("up", lens.up);
+  if (lens.up.norm() == 0) j.at("up").fail("must not be zero");
+  std::vector<CameraKey> keys;
+  const JsonValue list = j.at("keys");
+  for (const JsonValue& k : list.items()) {
+    k.only_keys({"time", "position", "target", "cut"});
+    CameraKey key;
+    key.time = k.at("time").non_negative();
+    key.position = k.at("position").vec3();
+    key.target = k.at("target").vec3();
+    if (auto cut = k.find("cut")) key.cut = cut->boolean();
+    if (!keys.empty() && !(key.time > keys.back().time)) k.at("time").fail("keyframe times must increase");
+    if ((key.target - key.position).norm() == 0) k.at("target").fail("must differ from the position");
+    if (((key.target - key.position).normalized().cross(lens.up.normalized())).norm() < 1e-6)
+      k.at("target").fail("the view direction is parallel to the camera's up vector");
+    keys.push_back(key);
+  }
+  if (keys.empty()) list.fail("a camera needs at least one key");
+  return CameraPath(lens, std::move(keys));
+}
+
+// The `view` block: parameters of view-dependent sizing.
+ViewParams parse_view(const JsonValue& j) {
+  j.only_keys({"v_back", "v_out", "margin", "anticipation", "l_min", "silhouette_threshold"});
+  ViewParams p;
+  p.v_back = j.positive_or("v_back", p.v_back);
+  p.v_out = j.positive_or("v_out", p.v_out);
+  if (p.v_back > 1) j.at("v_back").fail("must be at most 1");
+  if (p.v_out > p.v_back) j.at("v_out").fail("must be at most v_back");
+  p.margin = j.positive_or("margin", p.margin);
+  p.anticipation = j.non_negative_or("anticipation", p.anticipation);
+  p.l_min = j.non_negative_or("l_min", p.l_min);
+  p.silhouette_threshold = j.positive_or("silhouette_threshold", p.silhouette_threshold);
+  return p;
+}
+
 void check_name(const JsonValue& where, const std::string& name, std::set<std::string>& seen) {
   if (name.empty() || name.find_first_of("/\\ \t.") != std::string::npos)
     where.fail("names must be non-empty, without spaces, dots or slashes (they name output files)");
@@ -219,7 +269,7 @@ void check_name(const JsonValue& where, const std::string& name, std::set<std::s
 
 Scene load_scene(const std::string& path) {
   JsonValue j = JsonValue::load_file(path);
-  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "collision", "garments", "obstacles"});
+  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "collision", "garments", "obstacles", "camera", "view"});
   Scene s;
   s.path = path;
   s.name = j.string_or("name", fs::path(path).stem().string());
@@ -285,6 +335,8 @@ Scene load_scene(const std::string& path) {
       s.obstacles.push_back(parse_obstacle(o, path, s.frame_time));
       check_name(o.at("name"), s.obstacles.back().name, names);
     }
+  if (auto c = j.find("camera")) s.camera = parse_camera(*c);
+  if (auto v = j.find("view")) s.view = parse_view(*v);
   return s;
 }
 

@@ -1,6 +1,7 @@
 // A scene: garments (mesh, placement, material, handles), obstacles, gravity, air, timing and
 // solver settings, read from JSON (format in docs/scene-format.md).
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "remesh/sizing.hpp"
 #include "scene/handle.hpp"
 #include "scene/track.hpp"
+#include "view/camera.hpp"
+#include "view/view_factor.hpp"
 
 namespace vdc {
 
@@ -65,6 +68,8 @@ struct Scene {
   double fixed_size = 0;   // m: edge size of --mode fixed; 0 means remeshing.size_min
   std::vector<GarmentSpec> garments;
   std::vector<ObstacleSpec> obstacles;
+  std::optional<CameraPath> camera;  // the `camera` block; --mode view needs it
+  ViewParams view;                   // the `view` block
 };
 
 // Reads and checks a scene and everything it references. Throws InputError naming the file, the

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "remesh/remesher.hpp"
 #include "remesh/sizing.hpp"
+#include "view/view_sizing.hpp"
 #include "collision/obstacle_planes.hpp"
 #include "collision/untangle.hpp"
 
@@ -39,6 +40,8 @@ CollisionMesh collision_mesh(const Mesh& mesh) {
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
     : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
+  if (options_.mode == SimMode::View && !scene_.camera)
+    throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block to the scene");
   for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
   for (auto& g : scene_.garments) {
     if (!g.mesh.is_compact()) g.mesh.compact();
@@ -62,7 +65,20 @@ void Simulation::remesh_garments(FrameStats& stats) {
     for (NodeId n : g.mesh.nodes()) points[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
     const std::vector<ObstaclePlane> planes =
         nearest_obstacle_planes(points, obstacle_meshes_, obstacle_x, scene_.remeshing.size_max);
-    compute_sizing(g.mesh, scene_.remeshing, nullptr, planes);
+    if (options_.mode == SimMode::View) {
+      auto tv = std::chrono::steady_clock::now();
+      ViewSizing view(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
+      view.evaluate(g.mesh);
+      auto& factor = g.mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
+      for (FaceId f : g.mesh.faces()) factor[f] = view.factors()[static_cast<std::size_t>(f.idx)];
+      stats.visible_faces += view.counts().visible;
+      stats.back_facing_faces += view.counts().back_facing;
+      stats.out_of_frame_faces += view.counts().out_of_frame;
+      stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
+      compute_sizing(g.mesh, scene_.remeshing, &view, planes);
+    } else {
+      compute_sizing(g.mesh, scene_.remeshing, nullptr, planes);
+    }
     RemeshStats r = remesh(g.mesh);
     stats.splits += r.splits;
     stats.flips += r.flips;
@@ -249,7 +265,7 @@ FrameStats Simulation::step_frame() {
   FrameStats stats;
   const double h = scene_.frame_time / scene_.substeps;
   const double t_frame = time();
-  if (options_.mode == SimMode::Adaptive) remesh_garments(stats);
+  if (options_.mode != SimMode::Fixed) remesh_garments(stats);
   for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
   ++frame_;
   scatter_state();

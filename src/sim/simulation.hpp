@@ -14,6 +14,10 @@
 namespace vdc {
 
 enum class SimMode { Fixed, Adaptive, View };
+
+// Face attribute (double) holding each face's view factor in view mode (seed paper, eq. 4
+// after silhouette resampling), carried through remeshing to the frame's output.
+inline constexpr const char* kViewFactorAttr = "view_factor";
 bool parse_sim_mode(const std::string& name, SimMode& mode);
 const char* sim_mode_name(SimMode mode);
 
@@ -40,6 +44,10 @@ struct FrameStats {
   int splits = 0, flips = 0, collapses = 0;
   int proximities = 0;  // most proximity pairs in one step of the frame
   int untangle_moves = 0;  // vertex moves of untangling (after remeshing)
+  // View mode: faces at the frame's start by how the camera sees them, and the time taken by
+  // the view factors (part of remesh_seconds).
+  int visible_faces = 0, back_facing_faces = 0, out_of_frame_faces = 0;
+  double view_seconds = 0;
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
   double collision_seconds = 0;
   EnergyReport energy;

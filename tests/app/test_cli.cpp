@@ -104,6 +104,7 @@ TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
        },
        {},
        {"body.02.obj", "face 2", "other vertices"}},
+      {"view mode without a camera", [&] { return scene(); }, {"--mode", "view"}, {"scene.json", "camera", "--mode view needs a camera"}},
       {"missing scene", [&] { return (dir_ / "nothing.json").string(); }, {}, {"nothing.json", "cannot open"}},
   };
   for (const Row& row : rows) {

@@ -1,0 +1,131 @@
+// Perspective camera, its frustum, and keyframed camera paths with cuts.
+#include "view/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "collision/distance.hpp"
+#include "collision/intersection.hpp"
+
+namespace vdc {
+
+std::array<Vec3, 3> Camera::basis() const {
+  const Vec3 f = (target - position).normalized();
+  Vec3 r = f.cross(up);
+  if (r.squaredNorm() < 1e-24) r = f.cross(std::abs(f.y()) < 0.9 ? Vec3(0, 1, 0) : Vec3(1, 0, 0));
+  r.normalize();
+  return {r, r.cross(f), f};
+}
+
+double Camera::focal_pixels() const { return 0.5 * height / std::tan(0.5 * fov_y_degrees * M_PI / 180.0); }
+
+Vec2 Camera::project(const Vec3& x, double* depth) const {
+  const auto [r, u, f] = basis();
+  const Vec3 p = x - position;
+  const double z = p.dot(f), fp = focal_pixels();
+  if (depth) *depth = z;
+  return Vec2(0.5 * width + fp * p.dot(r) / z, 0.5 * height - fp * p.dot(u) / z);
+}
+
+Mat23 Camera::projection_jacobian(const Vec3& x) const {
+  const auto [r, u, f] = basis();
+  const Vec3 p = x - position;
+  const double z = p.dot(f), fp = focal_pixels();
+  Mat23 j;
+  j.row(0) = (fp * (r / z - p.dot(r) * f / (z * z))).transpose();
+  j.row(1) = (-fp * (u / z - p.dot(u) * f / (z * z))).transpose();
+  return j;
+}
+
+std::array<std::pair<Vec3, double>, 6> Camera::frustum_planes() const {
+  const auto [r, u, f] = basis();
+  const double ty = std::tan(0.5 * fov_y_degrees * M_PI / 180.0), tx = ty * width / height;
+  // Side planes pass through the camera position; their inward normals are f scaled against
+  // the side direction: for the right plane, x_r <= tx z  <=>  (tx f - r) . p >= 0.
+  auto through_eye = [&](const Vec3& n_raw) {
+    const Vec3 n = n_raw.normalized();
+    return std::make_pair(n, -n.dot(position));
+  };
+  return {std::make_pair(f, -f.dot(position) - near), std::make_pair(Vec3(-f), f.dot(position) + far), through_eye(tx * f - r),
+          through_eye(tx * f + r), through_eye(ty * f - u), through_eye(ty * f + u)};
+}
+
+std::array<Vec3, 8> Camera::frustum_corners() const {
+  const auto [r, u, f] = basis();
+  const double ty = std::tan(0.5 * fov_y_degrees * M_PI / 180.0), tx = ty * width / height;
+  std::array<Vec3, 8> c;
+  for (int k = 0; k < 2; ++k) {
+    const double z = k == 0 ? near : far;
+    const Vec3 centre = position + z * f;
+    c[static_cast<std::size_t>(4 * k + 0)] = centre - z * tx * r - z * ty * u;
+    c[static_cast<std::size_t>(4 * k + 1)] = centre + z * tx * r - z * ty * u;
+    c[static_cast<std::size_t>(4 * k + 2)] = centre + z * tx * r + z * ty * u;
+    c[static_cast<std::size_t>(4 * k + 3)] = centre - z * tx * r + z * ty * u;
+  }
+  return c;
+}
+
+Frustum::Frustum(const Camera& camera) : eye(camera.position), planes(camera.frustum_planes()), corners(camera.frustum_corners()) {}
+
+double distance_to_frustum(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, double cap) {
+  const auto& planes = frustum.planes;
+  const std::array<Vec3, 3> tri{a, b, c};
+  // Fast paths: a corner inside, or the whole face at least cap beyond one plane.
+  for (const Vec3& p : tri)
+    if (std::all_of(planes.begin(), planes.end(), [&](const auto& pl) { return pl.first.dot(p) + pl.second >= 0; })) return 0;
+  for (const auto& [n, offset] : planes) {
+    double nearest = -std::numeric_limits<double>::infinity();
+    for (const Vec3& p : tri) nearest = std::max(nearest, n.dot(p) + offset);
+    if (nearest <= -cap) return cap;
+  }
+  // Two disjoint convex sets: the distance is the smallest vertex-to-face or edge-to-edge one;
+  // they meet when an edge of either crosses a face of the other.
+  const auto& k = frustum.corners;
+  static constexpr int kFaces[12][3] = {{0, 1, 2}, {0, 2, 3}, {4, 6, 5}, {4, 7, 6}, {0, 3, 7}, {0, 7, 4},
+                                        {1, 5, 6}, {1, 6, 2}, {0, 4, 5}, {0, 5, 1}, {3, 2, 6}, {3, 6, 7}};
+  static constexpr int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  auto corner = [&](int i) -> const Vec3& { return k[static_cast<std::size_t>(i)]; };
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 &p = tri[static_cast<std::size_t>(e)], &q = tri[static_cast<std::size_t>((e + 1) % 3)];
+    for (const auto& f : kFaces)
+      if (segment_crosses_triangle(p, q, corner(f[0]), corner(f[1]), corner(f[2]))) return 0;
+  }
+  for (const auto& e : kEdges)
+    if (segment_crosses_triangle(corner(e[0]), corner(e[1]), a, b, c)) return 0;
+  double d = cap;
+  for (const Vec3& p : tri)
+    for (const auto& f : kFaces) d = std::min(d, point_triangle_distance(p, corner(f[0]), corner(f[1]), corner(f[2])));
+  for (const Vec3& p : k) d = std::min(d, point_triangle_distance(p, a, b, c));
+  for (int e = 0; e < 3; ++e)
+    for (const auto& fe : kEdges)
+      d = std::min(d, segment_segment_distance(tri[static_cast<std::size_t>(e)], tri[static_cast<std::size_t>((e + 1) % 3)], corner(fe[0]), corner(fe[1])));
+  return d;
+}
+
+CameraPath::CameraPath(const Camera& lens, std::vector<CameraKey> keys) : lens_(lens), keys_(std::move(keys)) {
+  for (std::size_t i = 0; i < keys_.size(); ++i) {
+    if (i == 0 || keys_[i].cut)
+      shots_.push_back(Shot{i == 0 ? -std::numeric_limits<double>::infinity() : keys_[i].time, {}, {}});
+    shots_.back().position.keys.push_back({keys_[i].time, keys_[i].position});
+    shots_.back().target.keys.push_back({keys_[i].time, keys_[i].target});
+  }
+}
+
+Camera CameraPath::at(double t) const {
+  std::size_t s = 0;
+  while (s + 1 < shots_.size() && shots_[s + 1].start <= t) ++s;
+  Camera c = lens_;
+  c.position = shots_[s].position.at(t);
+  c.target = shots_[s].target.at(t);
+  return c;
+}
+
+std::vector<double> CameraPath::cuts_in(double t0, double t1) const {
+  std::vector<double> out;
+  for (std::size_t s = 1; s < shots_.size(); ++s)
+    if (shots_[s].start > t0 && shots_[s].start <= t1) out.push_back(shots_[s].start);
+  return out;
+}
+
+}  // namespace vdc

@@ -1,0 +1,80 @@
+// The prescribed camera: a perspective camera (pose, vertical field of view, image size in
+// pixels, near and far planes) and a camera path of keyframes with smooth interpolation and
+// cuts, evaluated at any time, future included (anticipation needs it).
+#pragma once
+#include <array>
+#include <vector>
+
+#include "core/math.hpp"
+#include "scene/track.hpp"
+
+namespace vdc {
+
+struct Camera {
+  Vec3 position = Vec3(0, 0, 5);
+  Vec3 target = Vec3::Zero();
+  Vec3 up = Vec3(0, 1, 0);
+  double fov_y_degrees = 40;
+  int width = 1920, height = 1080;  // pixels
+  double near = 0.1, far = 100;     // m, along the view direction
+
+  // Orthonormal view basis: right, true up, forward (towards the target).
+  std::array<Vec3, 3> basis() const;
+  double focal_pixels() const;  // pixels per unit of x/z at the image centre
+  // Pixel coordinates (x right, y down, origin at the top-left corner) and depth of x.
+  Vec2 project(const Vec3& x, double* depth = nullptr) const;
+  // Jacobian of project at x: pixels per metre, 2x3 (x must be in front of the camera).
+  Mat23 projection_jacobian(const Vec3& x) const;
+  // The six planes bounding the view frustum, as inward unit normals n and offsets c, so that
+  // n . x + c >= 0 inside.
+  std::array<std::pair<Vec3, double>, 6> frustum_planes() const;
+  // The eight corners of the frustum: near plane then far plane, each in the order
+  // bottom-left, bottom-right, top-right, top-left.
+  std::array<Vec3, 8> frustum_corners() const;
+};
+
+// A camera's view frustum, precomputed once for many faces.
+struct Frustum {
+  explicit Frustum(const Camera& camera);
+  Vec3 eye;
+  std::array<std::pair<Vec3, double>, 6> planes;  // inward unit normals and offsets
+  std::array<Vec3, 8> corners;
+};
+
+// World-space distance from the triangle (a, b, c) to the view frustum: 0 when any part of it
+// is inside. `cap`: distances of at least cap may be returned as cap (cheaper).
+double distance_to_frustum(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, double cap);
+
+// One keyframe of a camera path. A key with `cut` starts a new shot: the path jumps to it
+// with no interpolation from the key before.
+struct CameraKey {
+  double time = 0;
+  Vec3 position = Vec3(0, 0, 5);
+  Vec3 target = Vec3::Zero();
+  bool cut = false;
+};
+
+class CameraPath {
+ public:
+  // `lens` gives the fixed parameters (up, field of view, image size, clip planes); keys sorted
+  // by strictly increasing time, at least one.
+  CameraPath(const Camera& lens, std::vector<CameraKey> keys);
+  // The camera at time t: within a shot, position and target are interpolated smoothly (cubic
+  // Hermite through the shot's keys); before the first key and after the last it holds.
+  Camera at(double t) const;
+  // Times of the cuts in (t0, t1].
+  std::vector<double> cuts_in(double t0, double t1) const;
+  const std::vector<CameraKey>& keys() const { return keys_; }
+  const Camera& lens() const { return lens_; }
+
+ private:
+  Camera lens_;
+  std::vector<CameraKey> keys_;
+  struct Shot {
+    double start;  // time of its first key (a cut), -infinity for the first shot
+    Vec3Track position, target;
+  };
+  std::vector<Shot> shots_;
+};
+
+}  // namespace vdc

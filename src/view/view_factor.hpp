@@ -1,0 +1,50 @@
+// View factors of the seed paper (view-dependent adaptive cloth simulation, section 3.1 and
+// 3.3): per face, how much of the physical resolution the camera needs. Spatial smoothing (eq.
+// 3) by the distance to the view frustum, temporal smoothing with anticipation (eq. 4) over the
+// camera's future, and silhouette resampling across edges where the factor jumps.
+#pragma once
+#include <vector>
+
+#include "core/mesh.hpp"
+#include "view/camera.hpp"
+
+namespace vdc {
+
+struct ViewParams {
+  double v_back = 0.2;                // factor of in-frame faces whose outer side faces away
+  double v_out = 0.01;                // factor of faces farther than the margin from the frustum
+  double margin = 0.4;                // m: the fall-off from the frustum to v_out
+  double anticipation = 5;            // frames: T, how far ahead the camera is looked at
+  double l_min = 4;                   // pixels: shortest visible edge on screen (0: no floor)
+  double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling
+  int samples_per_frame = 4;          // camera samples per frame over the anticipation window
+};
+
+// How a face is seen at one instant.
+struct FaceView {
+  double distance = 0;  // m, to the view frustum (0: in frame)
+  bool front = true;    // its outer side faces the camera
+  double factor = 1;    // eq. 3
+};
+
+// Eq. 3 for the triangle (a, b, c), counter-clockwise seen from its outer side.
+FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p);
+
+// The camera over the anticipation window [t, t + T]: frusta at offsets tau, increasing, with
+// their weights w(tau) = 1 - tau / T; sampled `samples_per_frame` times a frame and at every
+// cut in the window (the first instant of the new shot), so a cut is never missed.
+struct AnticipationWindow {
+  AnticipationWindow(const CameraPath& path, double t, double frame_time, const ViewParams& p);
+  std::vector<Frustum> frusta;  // frusta[0] is the camera now
+  std::vector<double> weights;  // weights[0] = 1
+};
+
+// Eq. 4: v(t) = max over tau of w(tau) v~(t + tau), the face held where it is.
+double anticipated_view_factor(const AnticipationWindow& window, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p);
+
+// Section 3.3: across every edge where the factors of its two faces differ by more than the
+// threshold, the less visible face takes their average (the larger such average if it has
+// several); faces at 1 never change. `factor` is indexed by face index.
+void resample_silhouettes(const Mesh& mesh, std::vector<double>& factor, double threshold);
+
+}  // namespace vdc

@@ -1,0 +1,73 @@
+// View-dependent sizing field (seed paper, eqs. 2 and 5 to 8).
+#include "view/view_sizing.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace vdc {
+
+Mat2 screen_space_floor(const Mat2& m, const Mat23& projection_jacobian, const Mat32& deformation, double l_min) {
+  if (!(l_min > 0)) return m;
+  const Mat2 s = projection_jacobian * deformation;  // material metres -> pixels
+  const double det = s.determinant();
+  if (!(std::abs(det) > 1e-12 * s.squaredNorm()) || !std::isfinite(det)) return m;
+  const Mat2 s_inv = s.inverse();
+  const Mat2 screen = s_inv.transpose() * m * s_inv;  // eq. 5
+  Eigen::SelfAdjointEigenSolver<Mat2> eig;
+  eig.computeDirect(0.5 * (screen + screen.transpose()));  // eq. 6
+  const Vec2 clamped = eig.eigenvalues().cwiseMin(1.0 / (l_min * l_min));  // eq. 7
+  const Mat2 floored = eig.eigenvectors() * clamped.asDiagonal() * eig.eigenvectors().transpose();  // eq. 8
+  return s.transpose() * floored * s;
+}
+
+ViewSizing::ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads)
+    : path_(path), params_(params), time_(time), frame_time_(frame_time), threads_(threads) {}
+
+void ViewSizing::evaluate(const Mesh& mesh) {
+  factor_.assign(static_cast<std::size_t>(mesh.face_capacity()), 1.0);
+  visible_.assign(factor_.size(), 0);
+  counts_ = ViewCounts{};
+  const AnticipationWindow window(path_, time_, frame_time_, params_);
+  std::vector<FaceId> faces;
+  for (FaceId f : mesh.faces()) faces.push_back(f);
+  std::vector<char> kind(faces.size(), 0);  // 0 visible, 1 back-facing, 2 out of frame
+  const auto n = static_cast<int64_t>(faces.size());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
+  for (int64_t i = 0; i < n; ++i) {
+    const FaceId f = faces[static_cast<std::size_t>(i)];
+    const Vec3 &a = mesh.x(mesh.face_node(f, 0)), &b = mesh.x(mesh.face_node(f, 1)), &c = mesh.x(mesh.face_node(f, 2));
+    const FaceView view = face_view(window.frusta.front(), a, b, c, params_);
+    kind[static_cast<std::size_t>(i)] = view.distance > 0 ? 2 : view.front ? 0 : 1;
+    visible_[static_cast<std::size_t>(f.idx)] = kind[static_cast<std::size_t>(i)] == 0;
+    factor_[static_cast<std::size_t>(f.idx)] = view.factor >= 1 ? 1.0 : anticipated_view_factor(window, a, b, c, params_);
+  }
+  for (char k : kind) {
+    if (k == 0) ++counts_.visible;
+    else if (k == 1) ++counts_.back_facing;
+    else ++counts_.out_of_frame;
+  }
+  resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
+}
+
+void ViewSizing::modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing) const {
+  const Camera now = path_.at(time_);
+  for (FaceId f : mesh.faces()) {
+    const double v = factor_[static_cast<std::size_t>(f.idx)];
+    Mat2 m = v * v * face_sizing[f];  // eq. 2
+    if (visible_[static_cast<std::size_t>(f.idx)] && params_.l_min > 0) {
+      const auto& vs = mesh.face_verts(f);
+      Mat2 du;
+      du.col(0) = mesh.u(vs[1]) - mesh.u(vs[0]);
+      du.col(1) = mesh.u(vs[2]) - mesh.u(vs[0]);
+      Mat32 dx;
+      const Vec3& x0 = mesh.x(mesh.face_node(f, 0));
+      dx.col(0) = mesh.x(mesh.face_node(f, 1)) - x0;
+      dx.col(1) = mesh.x(mesh.face_node(f, 2)) - x0;
+      const Vec3 centre = (x0 + mesh.x(mesh.face_node(f, 1)) + mesh.x(mesh.face_node(f, 2))) / 3.0;
+      m = screen_space_floor(m, now.projection_jacobian(centre), dx * du.inverse(), params_.l_min);
+    }
+    face_sizing[f] = m;
+  }
+}
+
+}  // namespace vdc

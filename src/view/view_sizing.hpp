@@ -1,0 +1,44 @@
+// View-dependent sizing (seed paper, section 3): the camera's modification of the physical
+// sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
+// face's view factor (eqs. 3 and 4, then silhouette resampling); modify() scales the physical
+// tensors by v^2 (eq. 2) and, on faces visible now, bounds them in screen space so that no edge
+// is asked to be shorter than l_min pixels (eqs. 5 to 8).
+#pragma once
+#include <vector>
+
+#include "remesh/sizing.hpp"
+#include "view/view_factor.hpp"
+
+namespace vdc {
+
+// Eqs. 5 to 8: with S = J F (J the 2x3 projection Jacobian, F the 3x2 deformation gradient),
+// S^T min(S^-T M S^-1, l_min^-2) S, the minimum taken on eigenvalues. M is returned unchanged
+// when S is singular or l_min is 0.
+Mat2 screen_space_floor(const Mat2& m, const Mat23& projection_jacobian, const Mat32& deformation, double l_min);
+
+struct ViewCounts {
+  int visible = 0;       // in frame, outer side towards the camera
+  int back_facing = 0;   // in frame, outer side away
+  int out_of_frame = 0;  // not in frame
+};
+
+class ViewSizing final : public FaceSizingModifier {
+ public:
+  ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads = 1);
+  // View factors of the mesh's faces at the current positions and time.
+  void evaluate(const Mesh& mesh);
+  void modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing) const override;
+  const std::vector<double>& factors() const { return factor_; }  // by face index
+  const ViewCounts& counts() const { return counts_; }
+
+ private:
+  const CameraPath& path_;
+  ViewParams params_;
+  double time_, frame_time_;
+  int threads_;
+  std::vector<double> factor_;
+  std::vector<char> visible_;  // by face index: in frame and facing the camera now
+  ViewCounts counts_;
+};
+
+}  // namespace vdc

@@ -1,0 +1,158 @@
+// View-dependent sizing, one test per equation of the seed paper's section 3 on hand-built
+// configurations with analytic answers.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "core/mesh_build.hpp"
+#include "view/view_sizing.hpp"
+
+namespace vdc {
+namespace {
+
+// A camera at (0, 0, 5) looking down -z at the origin; near 0.1, far 10, 40 degrees, 1280x720.
+Camera front_camera() {
+  Camera c;
+  c.position = Vec3(0, 0, 5);
+  c.target = Vec3::Zero();
+  c.fov_y_degrees = 40;
+  c.width = 1280;
+  c.height = 720;
+  c.near = 0.1;
+  c.far = 10;
+  return c;
+}
+
+// A small triangle centred at p, counter-clockwise seen from +z (its outer side faces +z), or
+// from -z when `flipped`.
+std::array<Vec3, 3> tri(const Vec3& p, bool flipped = false, double r = 0.01) {
+  std::array<Vec3, 3> t{p + Vec3(-r, -r, 0), p + Vec3(r, -r, 0), p + Vec3(0, r, 0)};
+  if (flipped) std::swap(t[1], t[2]);
+  return t;
+}
+
+FaceView view_of(const Camera& c, const std::array<Vec3, 3>& t, const ViewParams& p) { return face_view(Frustum(c), t[0], t[1], t[2], p); }
+
+TEST(ViewFactor, FaceInFrameFacingTheCameraGetsOne) {
+  ViewParams p;
+  FaceView v = view_of(front_camera(), tri(Vec3(0.2, -0.3, 0)), p);
+  EXPECT_EQ(v.distance, 0);
+  EXPECT_TRUE(v.front);
+  EXPECT_EQ(v.factor, 1.0);
+}
+
+TEST(ViewFactor, FaceBehindTheCameraBeyondTheMarginGetsVOut) {
+  ViewParams p;
+  FaceView v = view_of(front_camera(), tri(Vec3(0, 0, 6)), p);  // 1 m behind the camera
+  EXPECT_GE(v.distance, p.margin);
+  EXPECT_EQ(v.factor, p.v_out);
+}
+
+TEST(ViewFactor, BackFacingFaceInFrameGetsVBack) {
+  ViewParams p;
+  FaceView v = view_of(front_camera(), tri(Vec3(0, 0, 0), true), p);
+  EXPECT_EQ(v.distance, 0);
+  EXPECT_FALSE(v.front);
+  EXPECT_EQ(v.factor, p.v_back);
+}
+
+TEST(ViewFactor, HalfTheMarginBeyondTheFarPlaneIsHalfway) {
+  ViewParams p;  // margin 0.4 m
+  // The far plane is at z = -5; a face 0.2 m beyond it, on the axis, facing the camera.
+  FaceView v = view_of(front_camera(), tri(Vec3(0, 0, -5.2)), p);
+  EXPECT_NEAR(v.distance, 0.2, 1e-12);
+  EXPECT_NEAR(v.factor, 1 - 0.5 * (1 - p.v_out), 1e-12);
+  // Beside the frustum: 0.1 m right of the right side plane at depth 3 (x = 3 tan(fov_x / 2)).
+  const double tx = std::tan(20 * M_PI / 180) * 1280 / 720;
+  const Vec3 side_normal = Vec3(1, 0, tx).normalized();  // outward normal of the right plane
+  const Vec3 on_plane(3 * tx, 0, 2);
+  FaceView w = face_view(Frustum(front_camera()), on_plane + 0.1 * side_normal + Vec3(0, -0.001, 0),
+                         on_plane + 0.1 * side_normal + Vec3(0, 0.001, 0) + 0.001 * Vec3(-tx, 0, 1).normalized(),
+                         on_plane + 0.1 * side_normal + Vec3(0, 0.001, 0), p);
+  EXPECT_NEAR(w.distance, 0.1, 1e-3);
+}
+
+TEST(ViewFactor, AnticipationRampsUpLinearlyBeforeACut) {
+  ViewParams p;  // T = 5 frames
+  const double frame = 0.04, window = p.anticipation * frame, t0 = 2.0;
+  Camera lens = front_camera();
+  // First shot looks away from the origin (+z); the cut at t0 looks at it.
+  std::vector<CameraKey> keys{{0.0, Vec3(0, 0, 5), Vec3(0, 0, 10), false}, {t0, Vec3(0, 0, 5), Vec3(0, 0, 0), true},
+                              {t0 + 1, Vec3(0, 0, 5), Vec3(0, 0, 0), false}};
+  CameraPath path(lens, keys);
+  const auto t = tri(Vec3::Zero());
+  for (double before : {0.0, 0.01, 0.05, 0.1, 0.15, 0.19, 0.2, 0.3, 1.0}) {
+    const double now = t0 - before;
+    const double expected = before == 0 ? 1.0 : std::max(p.v_out, 1 - before / window);
+    EXPECT_NEAR(anticipated_view_factor(AnticipationWindow(path, now, frame, p), t[0], t[1], t[2], p), expected, 1e-12)
+        << before << " s before the cut";
+  }
+}
+
+TEST(ViewFactor, SilhouetteResamplingRaisesOnlyTheLessVisibleSide) {
+  // Three faces in a row: 0 | 1 | 2 sharing edges 0-1 and 1-2.
+  Mesh m = build_mesh(make_grid(1, 1, 1, 1));  // two faces
+  ASSERT_EQ(m.num_faces(), 2);
+  std::vector<double> v{1.0, 0.01};
+  resample_silhouettes(m, v, 0.5);
+  EXPECT_EQ(v[0], 1.0);
+  EXPECT_NEAR(v[1], 0.505, 1e-15);
+  std::vector<double> w{0.2, 0.9};
+  resample_silhouettes(m, w, 0.5);
+  EXPECT_NEAR(w[0], 0.55, 1e-15);
+  EXPECT_EQ(w[1], 0.9);
+  std::vector<double> small{0.6, 0.9};  // within the threshold: unchanged
+  resample_silhouettes(m, small, 0.5);
+  EXPECT_EQ(small, (std::vector<double>{0.6, 0.9}));
+}
+
+// Screen length, in pixels, of the shortest edge the tensor allows along material direction d.
+double screen_edge(const Mat2& m, const Mat23& j, const Mat32& f, const Vec2& d) {
+  const Vec2 u = d.normalized() / std::sqrt(d.normalized().dot(m * d.normalized()));
+  return (j * f * u).norm();
+}
+
+TEST(ScreenSpaceFloor, NoEdgeFinerThanLMinPixels) {
+  Camera c = front_camera();
+  c.position = Vec3::Zero();
+  c.target = Vec3(0, 0, -1);
+  const double l_min = 4, depth = 10, fp = 360 / std::tan(20 * M_PI / 180);
+  const Vec3 centre(0.5, -0.2, -depth);
+  const Mat23 j = c.projection_jacobian(centre);
+  // Material u along world x, v along world y, then tilted 60 degrees about x (foreshortened).
+  for (double tilt : {0.0, 60.0}) {
+    const double a = tilt * M_PI / 180;
+    Mat32 f;
+    f << 1, 0, 0, std::cos(a), 0, std::sin(a);
+    const Mat2 fine = Mat2::Identity() / (0.001 * 0.001);  // 1 mm edges
+    const Mat2 floored = screen_space_floor(fine, j, f, l_min);
+    for (double angle = 0; angle < M_PI; angle += M_PI / 12) {
+      const Vec2 d(std::cos(angle), std::sin(angle));
+      EXPECT_GE(screen_edge(floored, j, f, d), l_min * (1 - 1e-9)) << "tilt " << tilt << " direction " << angle;
+    }
+    // Facing the camera, the bound is exact: l_min pixels at depth z are l_min z / fp metres.
+    if (tilt == 0) {
+      Eigen::SelfAdjointEigenSolver<Mat2> eig(floored);
+      EXPECT_NEAR(1 / std::sqrt(eig.eigenvalues()[1]), l_min * depth / fp, 1e-3 * l_min * depth / fp);
+    }
+    // A tensor already coarser than l_min on screen is left as it is.
+    const Mat2 coarse = Mat2::Identity() / (0.5 * 0.5);
+    EXPECT_LT((screen_space_floor(coarse, j, f, l_min) - coarse).norm(), 1e-9 * coarse.norm());
+  }
+}
+
+TEST(CameraPath, InterpolatesWithinAShotAndJumpsAtACut) {
+  Camera lens = front_camera();
+  std::vector<CameraKey> keys{{0.0, Vec3(0, 0, 5), Vec3::Zero(), false}, {1.0, Vec3(2, 0, 5), Vec3::Zero(), false},
+                              {2.0, Vec3(9, 9, 9), Vec3(1, 1, 1), true}};
+  CameraPath path(lens, keys);
+  EXPECT_NEAR(path.at(0.5).position.x(), 1.0, 1e-12);  // Hermite with zero end tangents: symmetric
+  EXPECT_EQ(path.at(1.999).position, Vec3(2, 0, 5));   // held after the shot's last key
+  EXPECT_EQ(path.at(2.0).position, Vec3(9, 9, 9));     // the new shot from the cut on
+  EXPECT_EQ(path.cuts_in(1.0, 2.0), std::vector<double>{2.0});
+  EXPECT_TRUE(path.cuts_in(2.0, 3.0).empty());
+}
+
+}  // namespace
+}  // namespace vdc

@@ -1,0 +1,56 @@
+// --mode view on sheet-camera: with the view factor forced to 1 and the screen-space floor off
+// it reproduces the adaptive run bit for bit; with the scene's parameters it counts every face
+// and simulates fewer faces than adaptive once the close-up leaves most of the sheet out of frame.
+#include <gtest/gtest.h>
+
+#include "scene/scene.hpp"
+#include "sim/simulation.hpp"
+
+namespace vdc {
+namespace {
+
+Scene sheet_camera() { return load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/sheet-camera.json"); }
+
+TEST(ViewMode, WithFactorOneAndNoFloorItIsTheAdaptiveRunExactly) {
+  Scene neutral = sheet_camera();
+  neutral.view.v_back = 1;
+  neutral.view.v_out = 1;
+  neutral.view.l_min = 0;
+  Simulation adaptive(sheet_camera(), SimOptions{SimMode::Adaptive, 2});
+  Simulation view(std::move(neutral), SimOptions{SimMode::View, 2});
+  for (int f = 0; f < 30; ++f) {
+    adaptive.step_frame();
+    FrameStats s = view.step_frame();
+    const Mesh& a = adaptive.scene().garments[0].mesh;
+    const Mesh& b = view.scene().garments[0].mesh;
+    ASSERT_EQ(a.num_faces(), b.num_faces()) << "frame " << s.frame;
+    ASSERT_EQ(a.num_nodes(), b.num_nodes()) << "frame " << s.frame;
+    for (NodeId n : a.nodes()) ASSERT_EQ(a.x(n), b.x(n)) << "frame " << s.frame << " node " << n.idx;
+    EXPECT_GT(s.visible_faces + s.back_facing_faces + s.out_of_frame_faces, 0);  // every face was classified
+  }
+}
+
+TEST(ViewMode, CloseUpCoarsensWhatLeavesTheFrame) {
+  // The close-up after the cut at 5.2 s (frame 130) frames only part of the sheet.
+  Simulation adaptive(sheet_camera(), SimOptions{SimMode::Adaptive, 2});
+  Simulation view(sheet_camera(), SimOptions{SimMode::View, 2});
+  int adaptive_faces = 0, view_faces = 0, out_of_frame = 0;
+  for (int f = 0; f < 140; ++f) {
+    const FrameStats a = adaptive.step_frame();
+    const FrameStats v = view.step_frame();
+    if (v.frame > 132) {
+      adaptive_faces += a.faces;
+      view_faces += v.faces;
+      out_of_frame += v.out_of_frame_faces;
+    }
+  }
+  EXPECT_GT(out_of_frame, 0);
+  EXPECT_LT(view_faces, adaptive_faces);
+  const auto& factor = view.scene().garments[0].mesh.face_attrs().get<double>(kViewFactorAttr);
+  double lowest = 1;
+  for (FaceId f : view.scene().garments[0].mesh.faces()) lowest = std::min(lowest, factor[f]);
+  EXPECT_LT(lowest, 0.5);
+}
+
+}  // namespace
+}  // namespace vdc
