@@ -79,24 +79,51 @@ double collapse_worst(const Mesh& mesh, EdgeId e, int remove) {
   return worst;
 }
 
+// Collapses edges, shortest first, in passes; a pass after the first looks only at the edges
+// around nodes that the previous pass changed (elsewhere nothing can have become collapsible).
 int collapse_all(Mesh& mesh, const RemeshOptions& o) {
   int collapses = 0;
-  for (int pass = 0; pass < o.max_passes; ++pass) {
+  std::vector<EdgeId> pass_edges;
+  for (EdgeId e : mesh.edges()) pass_edges.push_back(e);
+  std::vector<char> dirty(static_cast<std::size_t>(mesh.node_capacity()), 0);
+  for (int pass = 0; pass < o.max_passes && !pass_edges.empty(); ++pass) {
     std::vector<std::pair<double, EdgeId>> candidates;
-    for (EdgeId e : mesh.edges()) candidates.emplace_back(edge_size2(mesh, e), e);
+    for (EdgeId e : pass_edges)
+      if (mesh.alive(e)) candidates.emplace_back(edge_size2(mesh, e), e);
     std::stable_sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    int this_pass = 0;
+    std::fill(dirty.begin(), dirty.end(), 0);
+    std::vector<NodeId> changed;
     for (const auto& [s2, e] : candidates) {
       if (!mesh.alive(e)) continue;
       for (int remove = 0; remove < 2; ++remove) {
         if (collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove)) continue;
+        const NodeId kept = mesh.edge_node(e, 1 - remove);
         collapse_edge(mesh, e, remove);
-        ++this_pass;
+        ++collapses;
+        changed.push_back(kept);
         break;
       }
     }
-    collapses += this_pass;
-    if (this_pass == 0) break;
+    // Next pass: the edges within two rings of every kept node.
+    std::vector<NodeId> ring;
+    for (NodeId k : changed) {
+      if (!mesh.alive(k) || dirty[static_cast<std::size_t>(k.idx)]) continue;
+      dirty[static_cast<std::size_t>(k.idx)] = 1;
+      ring.push_back(k);
+    }
+    for (std::size_t i = 0, first_ring = ring.size(); i < first_ring; ++i)
+      for (EdgeId x : mesh.node_edges(ring[i])) {
+        const NodeId other = mesh.edge_node(x, 0) == ring[i] ? mesh.edge_node(x, 1) : mesh.edge_node(x, 0);
+        if (!dirty[static_cast<std::size_t>(other.idx)]) {
+          dirty[static_cast<std::size_t>(other.idx)] = 1;
+          ring.push_back(other);
+        }
+      }
+    pass_edges.clear();
+    for (NodeId n : ring)
+      for (EdgeId x : mesh.node_edges(n)) pass_edges.push_back(x);
+    std::sort(pass_edges.begin(), pass_edges.end(), [](EdgeId a, EdgeId b) { return a.idx < b.idx; });
+    pass_edges.erase(std::unique(pass_edges.begin(), pass_edges.end()), pass_edges.end());
   }
   return collapses;
 }
