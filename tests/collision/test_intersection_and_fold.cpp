@@ -65,7 +65,7 @@ TEST(SheetFold, ZonesThatCannotSeparateHalveTheStepThenFreezeAndTheRunGoesOn) {
   // is retried in halves and, at the last level, the zone keeps its start positions.
   Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/sheet-fold.json");
   scene.collision.max_iterations = 1;
-  FoldRun run = run_sheet_fold(std::move(scene), 40);
+  FoldRun run = run_sheet_fold(std::move(scene), 20);
   EXPECT_GT(run.halvings, 0);
   EXPECT_GT(run.fallbacks, 0);
 }
