@@ -3,26 +3,34 @@ JOBS ?= $(shell nproc)
 SCENE ?= scenes/sheet-hang.json
 OUT ?= out/sheet-hang
 
-.PHONY: all deps build build-asan run test bench clean
+.PHONY: all deps configure build build-asan run test bench clean
 
 all: build
 
 deps:
 	@scripts/install-deps.sh
 
-build: deps
-	cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DVDCLOTH_TESTS=OFF -DVDCLOTH_BENCH=ON
+# build/: Release, the simulator, the benchmarks and the scene tests (whole scenes at full speed).
+configure:
+	cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DVDCLOTH_TESTS=OFF -DVDCLOTH_SCENE_TESTS=ON -DVDCLOTH_BENCH=ON
+
+build: deps configure
 	cmake --build build -j $(JOBS)
 
+# build-asan/: the unit tests under AddressSanitizer and UndefinedBehaviorSanitizer (line tables
+# only: enough for the reports' file and line, much cheaper to compile than full debug info).
 build-asan: deps
-	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVDCLOTH_SANITIZE=ON -DVDCLOTH_TESTS=ON -DVDCLOTH_BENCH=OFF
+	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+	  -DVDCLOTH_SANITIZE=ON -DVDCLOTH_TESTS=ON -DVDCLOTH_SCENE_TESTS=OFF -DVDCLOTH_BENCH=OFF
 	cmake --build build-asan -j $(JOBS)
 
-run: build
+run: deps configure
+	cmake --build build -j $(JOBS) --target vdcloth
 	build/vdcloth run $(SCENE) --out $(OUT)
 
 test: build build-asan
 	ctest --test-dir build-asan --output-on-failure -j $(JOBS)
+	ctest --test-dir build --output-on-failure -j $(JOBS)
 
 bench: build
 	build/bench/vdcloth_bench

@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev     # scene and material files
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev       # bench/
+  assimp-testmodels      # CMU motion capture BVH files for the importer's tests
 )
 
 missing=()

@@ -44,24 +44,10 @@ class Bvh {
   void self_pairs(const std::function<void(int32_t, int32_t)>& f) const;
   // Calls f(i, j) for every primitive i of this tree and j of `other` whose boxes overlap.
   void pairs_with(const Bvh& other, const std::function<void(int32_t, int32_t)>& f) const;
-  // Calls f(i) for every primitive whose box overlaps `box`. Inline, with a fixed stack: the
-  // median split keeps the depth at most ceil(log2 n) + 1, far below its 128 entries.
+  // Calls f(i) for every primitive whose box overlaps `box`.
   template <class F>
   void query(const Aabb& box, F&& f) const {
-    if (leaf_box_.empty()) return;
-    std::array<int32_t, 128> stack;
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (!n.box.overlaps(box)) continue;
-      if (n.left < 0) {
-        f(n.prim);
-      } else {
-        stack[static_cast<std::size_t>(top++)] = n.left;
-        stack[static_cast<std::size_t>(top++)] = n.right;
-      }
-    }
+    traverse([&](const Aabb& b) { return b.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
   }
 
   // Branch and bound for the nearest primitive to p: `dist(i)` returns primitive i's distance
@@ -69,28 +55,36 @@ class Bvh {
   // at `best` (a search radius) and ends as the smallest distance found.
   template <class F>
   void nearest(const Vec3& p, double& best, F&& dist) const {
-    if (leaf_box_.empty()) return;
-    std::array<int32_t, 128> stack;
-    int top = 0;
-    stack[static_cast<std::size_t>(top++)] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (n.box.distance(p) >= best) continue;
-      if (n.left < 0) {
-        best = std::min(best, dist(n.prim));
-        continue;
-      }
-      // The nearer child goes on top, to be visited first.
-      const double dl = nodes_[static_cast<std::size_t>(n.left)].box.distance(p), dr = nodes_[static_cast<std::size_t>(n.right)].box.distance(p);
-      stack[static_cast<std::size_t>(top++)] = dl <= dr ? n.right : n.left;
-      stack[static_cast<std::size_t>(top++)] = dl <= dr ? n.left : n.right;
-    }
+    traverse([&](const Aabb& b) { return b.distance(p) < best; }, [&](int32_t prim) { best = std::min(best, dist(prim)); },
+             [&](const Aabb& l, const Aabb& r) { return l.distance(p) <= r.distance(p); });
   }
 
   int32_t size() const { return static_cast<int32_t>(leaf_box_.size()); }
   const Aabb& root_box() const { return nodes_.front().box; }
 
  private:
+  // Depth first with a fixed stack (the median split keeps the depth at most ceil(log2 n) + 1,
+  // far below its 128 entries): descends into nodes whose box `enter` accepts, calls `leaf` on
+  // primitives, and visits the left child first when `left_first(left box, right box)`.
+  template <class Enter, class Leaf, class LeftFirst>
+  void traverse(Enter&& enter, Leaf&& leaf, LeftFirst&& left_first) const {
+    if (leaf_box_.empty()) return;
+    std::array<int32_t, 128> stack;
+    int top = 0;
+    stack[static_cast<std::size_t>(top++)] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
+      if (!enter(n.box)) continue;
+      if (n.left < 0) {
+        leaf(n.prim);
+        continue;
+      }
+      const bool lf = left_first(nodes_[static_cast<std::size_t>(n.left)].box, nodes_[static_cast<std::size_t>(n.right)].box);
+      stack[static_cast<std::size_t>(top++)] = lf ? n.right : n.left;
+      stack[static_cast<std::size_t>(top++)] = lf ? n.left : n.right;
+    }
+  }
+
   struct Node {
     Aabb box;
     int32_t left = -1, right = -1;  // children; -1 for a leaf

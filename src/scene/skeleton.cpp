@@ -1,0 +1,64 @@
+// Joint transforms of a skeleton's motion (BVH conventions: a joint's local transform is its
+// offset plus position channels, then its rotation channels composed in the order listed).
+#include "scene/skeleton.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vdc {
+
+Pose Motion::frame_pose(std::size_t i) const {
+  const auto& values = frames[i];
+  Pose pose;
+  pose.rotation.reserve(skeleton.joints.size());
+  pose.translation.reserve(skeleton.joints.size());
+  for (const Joint& j : skeleton.joints) {
+    Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+    Vec3 t = j.offset;
+    for (std::size_t c = 0; c < j.channels.size(); ++c) {
+      const double v = values[static_cast<std::size_t>(j.first_channel) + c];
+      const double a = v * M_PI / 180.0;
+      switch (j.channels[c]) {
+        case Channel::XPosition: t.x() += v; break;
+        case Channel::YPosition: t.y() += v; break;
+        case Channel::ZPosition: t.z() += v; break;
+        case Channel::XRotation: q = q * Eigen::AngleAxisd(a, Vec3::UnitX()); break;
+        case Channel::YRotation: q = q * Eigen::AngleAxisd(a, Vec3::UnitY()); break;
+        case Channel::ZRotation: q = q * Eigen::AngleAxisd(a, Vec3::UnitZ()); break;
+      }
+    }
+    pose.rotation.push_back(q.normalized());
+    pose.translation.push_back(t);
+  }
+  return pose;
+}
+
+Pose Motion::pose_at(double t) const {
+  if (frames.size() <= 1 || t <= 0) return frame_pose(0);
+  const double s = t / frame_time;
+  const auto last = frames.size() - 1;
+  if (s >= static_cast<double>(last)) return frame_pose(last);
+  const auto i = static_cast<std::size_t>(std::floor(s));
+  const double w = s - static_cast<double>(i);
+  Pose a = frame_pose(i);
+  const Pose b = frame_pose(i + 1);
+  for (std::size_t j = 0; j < a.rotation.size(); ++j) {
+    a.rotation[j] = a.rotation[j].slerp(w, b.rotation[j]);
+    a.translation[j] = (1 - w) * a.translation[j] + w * b.translation[j];
+  }
+  return a;
+}
+
+std::vector<Eigen::Isometry3d> Motion::world(const Pose& pose) const {
+  std::vector<Eigen::Isometry3d> out(skeleton.joints.size());
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
+    Eigen::Isometry3d local = Eigen::Isometry3d::Identity();
+    local.translate(pose.translation[j]);
+    local.rotate(pose.rotation[j]);
+    const int p = skeleton.joints[j].parent;
+    out[j] = p < 0 ? local : out[static_cast<std::size_t>(p)] * local;
+  }
+  return out;
+}
+
+}  // namespace vdc

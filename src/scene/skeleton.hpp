@@ -1,0 +1,59 @@
+// Skeletons and their motion: a joint hierarchy with offsets and channels (the BVH model), the
+// channel values of a sequence of frames, and joint transforms at any time (translations
+// interpolated linearly, rotations by spherical interpolation between frames), with retiming.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "core/math.hpp"
+
+namespace vdc {
+
+enum class Channel { XPosition, YPosition, ZPosition, XRotation, YRotation, ZRotation };
+
+struct Joint {
+  std::string name;               // "End Site" children are named after their parent + "_end"
+  int parent = -1;                // index of the parent joint, -1 for the root
+  Vec3 offset = Vec3::Zero();     // from the parent joint, in the parent's frame
+  std::vector<Channel> channels;  // in the order the file lists them
+  int first_channel = 0;          // index of its first channel in a frame's values
+  bool end_site = false;          // a BVH "End Site": a leaf point with no channels
+};
+
+struct Skeleton {
+  std::vector<Joint> joints;  // parents before children
+  int num_channels = 0;
+};
+
+// Per joint: rotation and translation relative to its parent (offset and position channels).
+struct Pose {
+  std::vector<Eigen::Quaterniond> rotation;
+  std::vector<Vec3> translation;
+};
+
+struct Motion {
+  Skeleton skeleton;
+  double frame_time = 1.0 / 30;  // s
+  std::vector<std::vector<double>> frames;  // channel values (degrees for rotations)
+
+  double duration() const { return frames.empty() ? 0 : frame_time * static_cast<double>(frames.size() - 1); }
+  // The pose of frame i: rotations composed in the order the channels are listed.
+  Pose frame_pose(std::size_t i) const;
+  // The pose at time t (s from the first frame): between frames, translations linear and
+  // rotations spherical; held before the first frame and after the last.
+  Pose pose_at(double t) const;
+  // World transforms of every joint for a pose.
+  std::vector<Eigen::Isometry3d> world(const Pose& pose) const;
+};
+
+// A motion played in a scene: scene time t shows motion time (t - start) * speed.
+struct MotionClip {
+  const Motion* motion = nullptr;
+  double start = 0;  // s
+  double speed = 1;
+  Pose pose_at(double t) const { return motion->pose_at((t - start) * speed); }
+};
+
+}  // namespace vdc
