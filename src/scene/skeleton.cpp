@@ -61,4 +61,13 @@ std::vector<Eigen::Isometry3d> Motion::world(const Pose& pose) const {
   return out;
 }
 
+void scale_lengths(Motion& motion, double factor) {
+  for (Joint& j : motion.skeleton.joints) {
+    j.offset *= factor;
+    for (std::size_t c = 0; c < j.channels.size(); ++c)
+      if (j.channels[c] == Channel::XPosition || j.channels[c] == Channel::YPosition || j.channels[c] == Channel::ZPosition)
+        for (auto& frame : motion.frames) frame[static_cast<std::size_t>(j.first_channel) + c] *= factor;
+  }
+}
+
 }  // namespace vdc

@@ -48,6 +48,10 @@ struct Motion {
   std::vector<Eigen::Isometry3d> world(const Pose& pose) const;
 };
 
+// Scales every length of a motion (joint offsets and position channels), e.g. from a capture's
+// units to metres.
+void scale_lengths(Motion& motion, double factor);
+
 // A motion played in a scene: scene time t shows motion time (t - start) * speed.
 struct MotionClip {
   const Motion* motion = nullptr;

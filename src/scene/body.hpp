@@ -1,0 +1,42 @@
+// Procedural body: a closed, watertight, consistently oriented triangle mesh of a figure built
+// from a skeleton in its rest pose (tapered capsules along the bones, blended by a smooth
+// minimum so the joints are smooth, polygonized once), skinned to the skeleton by linear blend
+// skinning. Collisions treat it as one obstacle whose vertices move with the skin.
+#pragma once
+#include <vector>
+
+#include "core/mesh_build.hpp"
+#include "scene/skeleton.hpp"
+
+namespace vdc {
+
+struct BodyParams {
+  double build = 1.0;        // scales every limb's thickness
+  double resolution = 0.025; // m: grid spacing of the polygonization
+  double blend = 0.04;       // m: smooth-minimum width at the joints
+};
+
+class Body {
+ public:
+  // `rest`: the skeleton's joint transforms in the rest pose (all rotations zero, offsets as
+  // given); lengths in metres.
+  Body(const Motion& motion, const BodyParams& params);
+  const MeshSource& rest_mesh() const { return rest_; }
+  // Vertex positions for a pose; at the rest pose, exactly the rest mesh.
+  std::vector<Vec3> skin(const Pose& pose) const;
+  // The rest pose of the motion's skeleton.
+  static Pose rest_pose(const Skeleton& s);
+
+ private:
+  struct Influence {
+    int joint;        // the joint whose transform moves the vertex
+    double weight;
+    Vec3 local;       // the vertex in that joint's rest frame
+    Vec3 rest_world;  // that joint's rest transform applied to `local`
+  };
+  const Motion& motion_;
+  MeshSource rest_;
+  std::vector<std::vector<Influence>> influences_;  // per vertex
+};
+
+}  // namespace vdc
