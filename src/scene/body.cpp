@@ -26,21 +26,28 @@ bool has(const std::string& name, const char* word) {
   return lower.find(word) != std::string::npos;
 }
 
-// Radii at the two ends of the bone ending at joint `name`, for a figure of about 1.75 m.
-std::pair<double, double> limb_radii(const std::string& name, const std::string& parent) {
-  if (has(name, "head") || (has(name, "neck") && has(parent, "neck"))) return {0.09, 0.10};
-  if (has(name, "neck")) return {0.06, 0.05};
-  if (has(name, "spine") || has(name, "chest") || has(name, "back")) return {0.13, 0.14};
-  if (has(name, "hipjoint") || (has(name, "hip") && !has(name, "hips"))) return {0.10, 0.09};
-  if (has(name, "upleg") || has(name, "thigh")) return {0.09, 0.065};
-  if (has(name, "toe")) return {0.035, 0.025};
-  if (has(name, "foot") || has(name, "ankle")) return {0.045, 0.04};
-  if (has(name, "leg") || has(name, "shin") || has(name, "knee")) return {0.065, 0.045};
-  if (has(name, "shoulder") || has(name, "collar") || has(name, "clavicle")) return {0.06, 0.055};
-  if (has(name, "forearm") || has(name, "elbow")) return {0.04, 0.032};
-  if (has(name, "hand") || has(name, "wrist")) return {0.032, 0.028};
-  if (has(name, "arm")) return {0.05, 0.04};
-  if (has(name, "finger") || has(name, "thumb")) return {0.0, 0.0};  // part of the hand's blob
+// Radii at the two ends of the bone from joint `owner` to its child `child` (BVH: a joint's
+// bone runs to its child), for a figure of about 1.75 m, by the usual joint names.
+std::pair<double, double> limb_radii(const std::string& owner, const std::string& child) {
+  if (has(owner, "finger") || has(owner, "thumb") || has(owner, "index") || has(child, "finger") || has(child, "thumb")) return {0, 0};
+  if (has(owner, "head")) return {0.095, 0.09};
+  if (has(owner, "neck")) return {0.05, 0.05};
+  if (has(owner, "hipjoint") || ((has(owner, "hips") || has(owner, "pelvis") || has(owner, "root")) && (has(child, "upleg") || has(child, "hip") || has(child, "thigh"))))
+    return {0.11, 0.09};
+  if (has(owner, "hips") || has(owner, "pelvis") || has(owner, "root")) return {0.13, 0.13};
+  if (has(owner, "spine") || has(owner, "chest") || has(owner, "back")) {
+    if (has(child, "neck")) return {0.14, 0.07};
+    if (has(child, "shoulder") || has(child, "collar") || has(child, "clavicle")) return {0.08, 0.06};
+    return {0.13, 0.14};
+  }
+  if (has(owner, "shoulder") || has(owner, "collar") || has(owner, "clavicle")) return {0.06, 0.05};
+  if (has(owner, "forearm")) return {0.04, 0.032};
+  if (has(owner, "hand")) return {0.032, 0.025};
+  if (has(owner, "upleg") || has(owner, "thigh")) return {0.085, 0.06};
+  if (has(owner, "toe")) return {0.03, 0.025};
+  if (has(owner, "foot") || has(owner, "ankle")) return {0.045, 0.035};
+  if (has(owner, "leg") || has(owner, "shin") || has(owner, "knee")) return {0.06, 0.045};
+  if (has(owner, "arm")) return {0.05, 0.04};
   return {0.04, 0.035};
 }
 
@@ -76,10 +83,10 @@ Body::Body(const Motion& motion, const BodyParams& params) : motion_(motion) {
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const int parent = joints[j].parent;
     if (parent < 0) continue;
-    auto [ra, rb] = limb_radii(joints[j].name, joints[static_cast<std::size_t>(parent)].name);
+    auto [ra, rb] = limb_radii(joints[static_cast<std::size_t>(parent)].name, joints[j].name);
     if (ra <= 0) continue;
     Bone b{static_cast<int>(j), rest[static_cast<std::size_t>(parent)].translation(), rest[j].translation(), params.build * ra, params.build * rb};
-    if ((b.b - b.a).norm() < 1e-6 && !has(joints[j].name, "head")) continue;
+    if ((b.b - b.a).norm() < 1e-6) continue;
     bones.push_back(b);
     for (const Vec3& p : {b.a, b.b}) box.grow(p);
   }
