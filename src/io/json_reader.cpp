@@ -57,6 +57,13 @@ std::vector<JsonValue> JsonValue::items() const {
   return out;
 }
 
+std::vector<std::pair<std::string, JsonValue>> JsonValue::members() const {
+  expect_object();
+  std::vector<std::pair<std::string, JsonValue>> out;
+  for (const auto& [key, v] : value_.items()) out.emplace_back(key, JsonValue(v, file_, path_.empty() ? key : path_ + "." + key));
+  return out;
+}
+
 void JsonValue::only_keys(std::initializer_list<const char*> allowed) const {
   expect_object();
   for (const auto& [key, v] : value_.items()) {

@@ -30,6 +30,7 @@ class JsonValue {
   JsonValue at(const std::string& key) const;  // required key
   std::optional<JsonValue> find(const std::string& key) const;
   std::vector<JsonValue> items() const;  // array elements
+  std::vector<std::pair<std::string, JsonValue>> members() const;  // object members, in key order
   // Fails on any key of this object not in `allowed`.
   void only_keys(std::initializer_list<const char*> allowed) const;
   void expect_object() const;
