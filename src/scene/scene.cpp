@@ -8,6 +8,7 @@
 
 #include "core/mesh_build.hpp"
 #include "io/json_reader.hpp"
+#include "io/bvh_motion.hpp"
 #include "io/obj.hpp"
 #include "physics/cloth_model.hpp"
 #include "scene/transform.hpp"
@@ -161,11 +162,30 @@ GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
 }
 
 ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time) {
-  j.only_keys({"name", "mesh", "transform", "motion"});
+  j.only_keys({"name", "mesh", "character", "transform", "motion"});
   ObstacleSpec o;
   o.name = j.at("name").string();
-  const JsonValue mesh = j.at("mesh");
-  if (auto seq = mesh.is_string() ? std::nullopt : mesh.find("sequence")) {
+  if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
+  if (auto c = j.find("character")) {
+    // The character places itself (its transform applies to the skinned body every frame).
+    c->only_keys({"motion", "scale", "build", "resolution", "start", "speed"});
+    const JsonValue file = c->at("motion");
+    const std::string path = resolve(file, scene_path);
+    Motion motion = with_key(file, [&] { return read_bvh(path); });
+    if (motion.frames.empty()) file.fail("the motion has no frames");
+    scale_lengths(motion, c->positive_or("scale", 1.0));
+    BodyParams body;
+    body.build = c->positive_or("build", body.build);
+    body.resolution = c->positive_or("resolution", body.resolution);
+    if (body.resolution < 0.005) c->at("resolution").fail("must be at least 0.005 m");
+    const double start = c->number_or("start", 0.0), speed = c->positive_or("speed", 1.0);
+    const Transform placement = j.has("transform") ? parse_transform(j.at("transform")) : Transform{};
+    o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed);
+    o.mesh = build_mesh(o.character->rest_mesh());
+    const std::vector<Vec3> x0 = o.character->positions_at(0.0);
+    for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x0[static_cast<std::size_t>(n.idx)];
+  } else if (auto seq = j.at("mesh").is_string() ? std::nullopt : j.at("mesh").find("sequence")) {
+    const JsonValue mesh = j.at("mesh");
     mesh.only_keys({"sequence"});
     seq->only_keys({"files", "first", "count", "frame_time"});
     const long long first = seq->integer_or("first", 1), count = seq->at("count").integer();
@@ -186,9 +206,9 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
     o.sequence = std::move(s.frames);
     o.sequence_frame_time = dt;
   } else {
-    o.mesh = parse_mesh(mesh, scene_path, false);
+    o.mesh = parse_mesh(j.at("mesh"), scene_path, false);
   }
-  if (auto t = j.find("transform")) {
+  if (auto t = j.find("transform"); t && !o.character) {
     Transform tr = parse_transform(*t);
     for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = tr.apply(o.mesh.x(n));
     for (auto& frame : o.sequence)
@@ -345,12 +365,12 @@ Scene load_scene(const std::string& path) {
 namespace vdc {
 
 std::vector<Vec3> ObstacleSpec::positions_at(double t) const {
+  std::vector<Vec3> out = character ? character->positions_at(t) : sequence.size() > 1 ? interpolate_frames(sequence, sequence_frame_time, t) : rest;
+  if (translate.empty() && rotate.empty()) return out;  // no rigid motion: the positions as they are
   Transform motion;
   motion.rotate_degrees = rotate.at(t);
   const Mat3 r = motion.rotation();
   const Vec3 offset = translate.at(t);
-  std::vector<Vec3> out = rest;
-  if (sequence.size() > 1) out = interpolate_frames(sequence, sequence_frame_time, t);
   for (Vec3& x : out) x = r * (x - pivot) + pivot + offset;
   return out;
 }

@@ -1,6 +1,7 @@
 // A scene: garments (mesh, placement, material, handles), obstacles, gravity, air, timing and
 // solver settings, read from JSON (format in docs/scene-format.md).
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "remesh/sizing.hpp"
 #include "scene/handle.hpp"
 #include "scene/track.hpp"
+#include "scene/character.hpp"
 #include "view/camera.hpp"
 #include "view/view_factor.hpp"
 
@@ -37,7 +39,9 @@ struct ObstacleSpec {
   // An OBJ sequence (placed by the transform): replaces `rest` as the positions before motion.
   std::vector<std::vector<Vec3>> sequence;
   double sequence_frame_time = 0;
-  bool moves() const { return !translate.empty() || !rotate.empty() || sequence.size() > 1; }
+  // An animated character (placed by its own transform): replaces `rest` likewise.
+  std::shared_ptr<const Character> character;
+  bool moves() const { return !translate.empty() || !rotate.empty() || sequence.size() > 1 || character; }
   std::vector<Vec3> positions_at(double t) const;
 };
 

@@ -1,0 +1,19 @@
+// Animated character obstacles: skinned procedural bodies placed in the scene.
+#include "scene/character.hpp"
+
+namespace vdc {
+
+Character::Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed)
+    : motion_(std::make_unique<Motion>(std::move(motion))), placement_(placement) {
+  body_ = std::make_unique<Body>(*motion_, body);
+  clip_ = MotionClip{motion_.get(), start, speed};
+}
+
+std::vector<Vec3> Character::positions_at(double t) const {
+  std::vector<Vec3> x = body_->skin(clip_.pose_at(t));
+  const Mat3 r = placement_.rotation();
+  for (Vec3& p : x) p = r * (placement_.scale * p) + placement_.translate;
+  return x;
+}
+
+}  // namespace vdc

@@ -1,0 +1,30 @@
+// An animated character as an obstacle: a motion (BVH, lengths scaled to metres), the
+// procedural body of its skeleton, placed in the scene by a transform and played from a start
+// time at a speed. Its vertices move with the skin, so collisions see per-vertex velocities.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "scene/body.hpp"
+#include "scene/transform.hpp"
+
+namespace vdc {
+
+class Character {
+ public:
+  Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed);
+  const MeshSource& rest_mesh() const { return body_->rest_mesh(); }  // unplaced, rest pose
+  // Placed, skinned vertex positions at scene time t (by mesh node index).
+  std::vector<Vec3> positions_at(double t) const;
+  const Motion& motion() const { return *motion_; }
+  double start() const { return clip_.start; }
+  double speed() const { return clip_.speed; }
+
+ private:
+  std::unique_ptr<Motion> motion_;  // stable address: the body refers to it
+  std::unique_ptr<Body> body_;
+  Transform placement_;
+  MotionClip clip_;
+};
+
+}  // namespace vdc
