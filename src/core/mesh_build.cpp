@@ -192,4 +192,11 @@ MeshSource make_icosphere(double radius, int subdivisions) {
   return src;
 }
 
+double enclosed_volume(const MeshSource& mesh, const std::vector<Vec3>& x) {
+  double v = 0;
+  for (const auto& f : mesh.faces)
+    v += x[static_cast<std::size_t>(f[0].node)].dot(x[static_cast<std::size_t>(f[1].node)].cross(x[static_cast<std::size_t>(f[2].node)]));
+  return v / 6;
+}
+
 }  // namespace vdc

@@ -46,6 +46,10 @@ MeshSource make_grid(double size_x, double size_y, int nx, int ny);
 // canonical material triangle (see with_canonical_uvs).
 MeshSource make_icosphere(double radius, int subdivisions);
 
+// Volume enclosed by a closed triangle mesh with positions x (by position index): positive when
+// its faces are counter-clockwise seen from outside (divergence theorem over the faces).
+double enclosed_volume(const MeshSource& mesh, const std::vector<Vec3>& x);
+
 // Replaces the uvs of a mesh that has no material space (an obstacle) by one canonical
 // counter-clockwise triangle per face, which every check of build_mesh accepts.
 void with_canonical_uvs(MeshSource& src);

@@ -10,13 +10,6 @@
 namespace vdc {
 namespace {
 
-double signed_volume(const MeshSource& m, const std::vector<Vec3>& x) {
-  double v = 0;
-  for (const auto& f : m.faces)
-    v += x[static_cast<std::size_t>(f[0].node)].dot(x[static_cast<std::size_t>(f[1].node)].cross(x[static_cast<std::size_t>(f[2].node)])) / 6;
-  return v;
-}
-
 TEST(Isosurface, SphereIsClosedOutwardAndNearTheTrueRadius) {
   Aabb box;
   box.grow(Vec3(-1.2, -1.2, -1.2));
@@ -26,7 +19,7 @@ TEST(Isosurface, SphereIsClosedOutwardAndNearTheTrueRadius) {
   Mesh m = build_mesh(s);  // throws on non-manifold or inconsistent orientation
   for (EdgeId e : m.edges()) ASSERT_FALSE(m.is_boundary(e));
   EXPECT_EQ(m.num_nodes() - m.num_edges() + m.num_faces(), 2);  // a sphere's Euler characteristic
-  EXPECT_NEAR(signed_volume(s, s.positions), 4.0 / 3.0 * M_PI, 0.03 * 4.0 / 3.0 * M_PI);
+  EXPECT_NEAR(enclosed_volume(s, s.positions), 4.0 / 3.0 * M_PI, 0.03 * 4.0 / 3.0 * M_PI);
   for (const Vec3& p : s.positions) EXPECT_NEAR(p.norm(), 1.0, 0.02);
 }
 
@@ -42,13 +35,13 @@ TEST(Body, ClosedOutwardAndSkinnedExactlyAtRest) {
     const MeshSource& mesh = body.rest_mesh();
     Mesh m = build_mesh(mesh);
     for (EdgeId e : m.edges()) ASSERT_FALSE(m.is_boundary(e)) << file;
-    const double v0 = signed_volume(mesh, mesh.positions);
+    const double v0 = enclosed_volume(mesh, mesh.positions);
     EXPECT_GT(v0, 0.03) << file;  // outward, and a human's volume (0.06 to 0.08 m^3) in order of magnitude
     EXPECT_LT(v0, 0.15) << file;
     EXPECT_EQ(body.skin(Body::rest_pose(motion.skeleton)), mesh.positions) << file;
     for (std::size_t f : {std::size_t{0}, motion.frames.size() / 3, motion.frames.size() / 2, motion.frames.size() - 1}) {
       const std::vector<Vec3> x = body.skin(motion.frame_pose(f));
-      const double v = signed_volume(mesh, x);
+      const double v = enclosed_volume(mesh, x);
       EXPECT_GT(v, 0.8 * v0) << file << " frame " << f;
       EXPECT_LT(v, 1.2 * v0) << file << " frame " << f;
     }

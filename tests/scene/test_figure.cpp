@@ -13,13 +13,6 @@ namespace {
 
 std::string motion_path(const std::string& name, const char* ext) { return std::string(VDCLOTH_SOURCE_DIR) + "/motions/" + name + ext; }
 
-double signed_volume(const MeshSource& m, const std::vector<Vec3>& x) {
-  double v = 0;
-  for (const auto& f : m.faces)
-    v += x[static_cast<std::size_t>(f[0].node)].dot(x[static_cast<std::size_t>(f[1].node)].cross(x[static_cast<std::size_t>(f[2].node)])) / 6;
-  return v;
-}
-
 TEST(Figure, ShippedMotionsAreTheirKeyframesAndStartAtRest) {
   for (const std::string name : {"dance", "karate"}) {
     const Motion shipped = read_bvh(motion_path(name, ".bvh"));
@@ -50,13 +43,13 @@ TEST(Figure, BodyIsClosedAndOutwardThroughEachMotion) {
     const MeshSource& mesh = body.rest_mesh();
     Mesh m = build_mesh(mesh);  // manifold and consistently oriented, or it throws
     for (EdgeId e : m.edges()) ASSERT_FALSE(m.is_boundary(e)) << name;
-    const double v0 = signed_volume(mesh, mesh.positions);
+    const double v0 = enclosed_volume(mesh, mesh.positions);
     EXPECT_GT(v0, 0.04) << name;
     EXPECT_LT(v0, 0.12) << name;
     EXPECT_EQ(body.skin(Body::rest_pose(motion.skeleton)), mesh.positions) << name;
     EXPECT_EQ(body.skin(motion.frame_pose(0)), mesh.positions) << name;
     for (double t = 1.0; t < motion.duration(); t += 1.1) {
-      const double v = signed_volume(mesh, body.skin(motion.pose_at(t)));
+      const double v = enclosed_volume(mesh, body.skin(motion.pose_at(t)));
       EXPECT_GT(v, 0.8 * v0) << name << " at " << t << " s";
       EXPECT_LT(v, 1.2 * v0) << name << " at " << t << " s";
     }
