@@ -108,7 +108,9 @@ TEST(Flip, DiagonalFlipsAndFlipsBack) {
   EXPECT_TRUE(m.find_edge(a, b).valid());
   EXPECT_NEAR(material_area(m), 1.0, 1e-15);
   for (EdgeId e : m.edges()) {
-    if (m.is_boundary(e)) EXPECT_FALSE(can_flip(m, e));
+    if (m.is_boundary(e)) {
+      EXPECT_FALSE(can_flip(m, e));
+    }
   }
 }
 
