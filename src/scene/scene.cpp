@@ -11,6 +11,7 @@
 #include "io/bvh_motion.hpp"
 #include "io/obj.hpp"
 #include "physics/cloth_model.hpp"
+#include "scene/garments.hpp"
 #include "scene/transform.hpp"
 #include "scene/track.hpp"
 #include "scene/obj_sequence.hpp"
@@ -66,7 +67,21 @@ Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment)
     std::string file = resolve(j, scene_path);
     return with_key(j, [&] { return read_obj(file, garment); });
   }
-  j.only_keys({"grid", "sphere"});
+  j.only_keys({"grid", "sphere", "dress"});
+  if (auto d = j.find("dress")) {
+    if (!garment) d->fail("an obstacle cannot be a dress");
+    d->only_keys({"around", "cell", "hem_height", "hem_radius"});
+    DressParams p;
+    const long long around = d->integer_or("around", p.around);
+    if (around < 16 || around > 1000 || around % 8 != 0) d->at("around").fail("must be a multiple of 8 between 16 and 1000");
+    p.around = static_cast<int>(around);
+    p.cell = d->positive_or("cell", p.cell);
+    p.hem_height = d->positive_or("hem_height", p.hem_height);
+    p.hem_radius = d->positive_or("hem_radius", p.hem_radius);
+    if (p.hem_height >= p.waist_height) d->at("hem_height").fail("must be below the waist (1.05 m)");
+    if (p.hem_radius <= p.bodice_radius) d->at("hem_radius").fail("must be more than the bodice radius (0.19 m)");
+    return build_mesh(make_dress(p));
+  }
   if (auto sp = j.find("sphere")) {
     if (garment) sp->fail("a garment cannot be a sphere (it needs a pattern)");
     sp->only_keys({"radius", "subdivisions"});

@@ -1,0 +1,130 @@
+// Procedural garment patterns, sewn and placed around the figure in its rest pose.
+#include "scene/garments.hpp"
+
+#include <cmath>
+#include <functional>
+
+namespace vdc {
+
+namespace {
+
+// Builds pattern pieces into one MeshSource: each piece is a grid of world positions and
+// material coordinates, whose nodes may be taken from pieces already added (seams).
+class Sewing {
+ public:
+  // Adds a piece of (rows + 1) x (cols + 1) points. node(i, j) returns an existing node to share
+  // or -1 for a new one at world(i, j); uv(i, j) is the material position. Faces are turned so
+  // their world normal points along outward(point) and their material triangle is then
+  // counter-clockwise (the piece's material layout is mirrored if needed).
+  // With `wrap`, the last column is the first one again (a seam closing the piece into a tube).
+  std::vector<std::vector<int32_t>> add_piece(int rows, int cols, bool wrap, const std::function<int32_t(int, int)>& node,
+                                              const std::function<Vec3(int, int)>& world, const std::function<Vec2(int, int)>& uv,
+                                              const std::function<Vec3(const Vec3&)>& outward) {
+    std::vector<std::vector<int32_t>> nodes(static_cast<std::size_t>(rows + 1), std::vector<int32_t>(static_cast<std::size_t>(cols + 1)));
+    std::vector<std::vector<int32_t>> uvs = nodes;
+    for (int i = 0; i <= rows; ++i)
+      for (int j = 0; j <= cols; ++j) {
+        int32_t n = wrap && j == cols ? nodes[static_cast<std::size_t>(i)][0] : node(i, j);
+        if (n < 0) {
+          n = static_cast<int32_t>(src_.positions.size());
+          src_.positions.push_back(world(i, j));
+        }
+        nodes[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = n;
+        uvs[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = static_cast<int32_t>(src_.uvs.size());
+        src_.uvs.push_back(uv(i, j));
+      }
+    const std::size_t first_uv = src_.uvs.size() - static_cast<std::size_t>((rows + 1) * (cols + 1));
+    const std::size_t first_face = src_.faces.size();
+    auto corner = [&](int i, int j) { return Corner{nodes[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)], uvs[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]}; };
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < cols; ++j) {
+        for (auto tri : {std::array<Corner, 3>{corner(i, j), corner(i + 1, j), corner(i + 1, j + 1)},
+                         std::array<Corner, 3>{corner(i, j), corner(i + 1, j + 1), corner(i, j + 1)}}) {
+          const Vec3 &a = src_.positions[static_cast<std::size_t>(tri[0].node)], &b = src_.positions[static_cast<std::size_t>(tri[1].node)],
+                     &c = src_.positions[static_cast<std::size_t>(tri[2].node)];
+          if (area_normal(a, b, c).dot(outward((a + b + c) / 3.0)) < 0) std::swap(tri[1], tri[2]);
+          src_.faces.push_back(tri);
+        }
+      }
+    // The material layout must be counter-clockwise for these windings: mirror it if not.
+    const auto& f = src_.faces[first_face];
+    if (signed_area2(src_.uvs[static_cast<std::size_t>(f[0].uv)], src_.uvs[static_cast<std::size_t>(f[1].uv)],
+                     src_.uvs[static_cast<std::size_t>(f[2].uv)]) < 0)
+      for (std::size_t k = first_uv; k < src_.uvs.size(); ++k) src_.uvs[k].x() = -src_.uvs[k].x();
+    return nodes;
+  }
+  MeshSource take() { return std::move(src_); }
+
+ private:
+  MeshSource src_;
+};
+
+}  // namespace
+
+MeshSource make_dress(const DressParams& p) {
+  Sewing sew;
+  const int n = p.around;
+  // Around the body from the back (z < 0) through the left side (+x) to the front and round.
+  auto theta = [&](int k) { return M_PI + 2 * M_PI * k / n; };
+  auto ring = [&](double r, double y, int k) { return Vec3(r * std::sin(theta(k)), y, r * std::cos(theta(k))); };
+  auto radial = [](const Vec3& x) { return Vec3(x.x(), 0, x.z()); };
+  const double column = 2 * M_PI * p.bodice_radius / n;  // material width of a column
+
+  // Bodice: a tube from the waist up to the top edge, sewn at the back.
+  const double height = p.top_height - p.waist_height;
+  const int rows_b = std::max(1, static_cast<int>(std::round(height / p.cell)));
+  const auto bodice = sew.add_piece(
+      rows_b, n, true, [](int, int) { return -1; }, [&](int i, int k) { return ring(p.bodice_radius, p.waist_height + height * i / rows_b, k); },
+      [&](int i, int k) { return Vec2(column * k, height * i / rows_b); }, radial);
+
+  // Skirt: a cone from the waist (sewn to the bodice) down to the hem, cut from an annular
+  // sector (the cone developed flat), sewn at the back.
+  const double drop = p.waist_height - p.hem_height, flare = p.hem_radius - p.bodice_radius, slant = std::hypot(drop, flare);
+  const int rows_s = std::max(1, static_cast<int>(std::round(slant / p.cell)));
+  const double apex = p.bodice_radius * slant / flare;  // from the cone's apex to the waist, along the slant
+  const double sector = 2 * M_PI * p.bodice_radius / apex;
+  sew.add_piece(
+      rows_s, n, true, [&](int i, int k) { return i == 0 ? bodice[0][static_cast<std::size_t>(k)] : -1; },
+      [&](int i, int k) { return ring(p.bodice_radius + flare * i / rows_s, p.waist_height - drop * i / rows_s, k); },
+      [&](int i, int k) {
+        const double r = apex + slant * i / rows_s, b = sector * k / n;
+        return Vec2(r * std::sin(b), -r * std::cos(b));
+      },
+      radial);
+
+  // Straps: arcs over the shoulders from the top edge in front to the top edge behind, two
+  // columns wide, each end sewn to the bodice's top row.
+  const double centre_theta = 2 * M_PI + std::asin(p.strap_x / p.bodice_radius);  // front left
+  const int first_left = static_cast<int>(std::round((centre_theta - M_PI) * n / (2 * M_PI))) - 1;
+  const auto& top = bodice[static_cast<std::size_t>(rows_b)];
+  for (int side : {1, -1}) {
+    // Front column c and the back column with the same x, mirrored through the x-y plane.
+    auto front = [&](int c) { return side > 0 ? (first_left + c) % n : ((n - first_left - c) % n + n) % n; };
+    auto back = [&](int c) { return ((n / 2 - front(c)) % n + n) % n; };
+    const Vec3 f0 = ring(p.bodice_radius, p.top_height, front(1));
+    const double path = 0.5 * M_PI * std::sqrt(0.5 * (f0.z() * f0.z() + p.strap_rise * p.strap_rise));  // half an ellipse
+    const int rows = std::max(2, static_cast<int>(std::round(2 * path / p.cell)));
+    auto point = [&](int i, int c) {
+      const Vec3 f = ring(p.bodice_radius, p.top_height, front(c));
+      const double phi = M_PI * i / rows;
+      return Vec3(f.x(), p.top_height + p.strap_rise * std::sin(phi), f.z() * std::cos(phi));
+    };
+    sew.add_piece(
+        rows, 2, false,
+        [&](int i, int c) {
+          if (i == 0) return top[static_cast<std::size_t>(front(c))];
+          if (i == rows) return top[static_cast<std::size_t>(back(c))];
+          return -1;
+        },
+        point,
+        [&](int i, int c) {
+          double v = 0;  // arc length along this column
+          for (int k = 1; k <= i; ++k) v += (point(k, c) - point(k - 1, c)).norm();
+          return Vec2(column * c, v);
+        },
+        [&](const Vec3& x) { return Vec3(0, x.y() - p.top_height, x.z()); });
+  }
+  return sew.take();
+}
+
+}  // namespace vdc

@@ -1,0 +1,25 @@
+// Procedural garments for the project's figure (figure_skeleton, rest pose): pattern pieces in
+// material space (metres), sewn along seams (a seam is a world node shared by pieces with
+// their own material coordinates), placed around the body in its rest pose.
+#pragma once
+#include "core/mesh_build.hpp"
+
+namespace vdc {
+
+// A dress: a bodice (a tube from the waist to under the arms, sewn at the back), a flared skirt
+// (a cone cut from an annular sector, sewn at the back and to the bodice at the waist) and two
+// shoulder straps sewn to the bodice's top edge front and back. Outer side outwards.
+struct DressParams {
+  int around = 48;                // segments around the body (bodice and skirt)
+  double bodice_radius = 0.19;    // m
+  double waist_height = 1.05;     // m, where bodice and skirt meet
+  double top_height = 1.32;       // m, the bodice's top edge, under the arms
+  double hem_height = 0.45;       // m
+  double hem_radius = 0.42;       // m, the skirt's flare
+  double strap_rise = 0.20;       // m, how far the straps arc above the top edge
+  double strap_x = 0.13;          // m, strap centre from the body's midline
+  double cell = 0.03;             // m, target edge length along the straps and down the panels
+};
+MeshSource make_dress(const DressParams& p = {});
+
+}  // namespace vdc
