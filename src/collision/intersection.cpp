@@ -52,4 +52,23 @@ int count_self_intersections(const std::vector<std::array<int32_t, 3>>& faces, c
   return count;
 }
 
+int count_intersections_between(const std::vector<std::array<int32_t, 3>>& faces_a, const std::vector<Vec3>& xa,
+                                const std::vector<std::array<int32_t, 3>>& faces_b, const std::vector<Vec3>& xb) {
+  auto tri = [](const std::array<int32_t, 3>& f, const std::vector<Vec3>& x) {
+    return std::array<Vec3, 3>{x[static_cast<std::size_t>(f[0])], x[static_cast<std::size_t>(f[1])], x[static_cast<std::size_t>(f[2])]};
+  };
+  std::vector<Aabb> boxes(faces_b.size());
+  for (std::size_t f = 0; f < faces_b.size(); ++f)
+    for (const Vec3& p : tri(faces_b[f], xb)) boxes[f].grow(p);
+  const Bvh tree(boxes);
+  int count = 0;
+  for (const auto& fa : faces_a) {
+    const auto t = tri(fa, xa);
+    Aabb box;
+    for (const Vec3& p : t) box.grow(p);
+    tree.query(box, [&](int32_t g) { count += triangles_intersect(t, tri(faces_b[static_cast<std::size_t>(g)], xb)); });
+  }
+  return count;
+}
+
 }  // namespace vdc

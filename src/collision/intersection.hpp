@@ -15,5 +15,8 @@ bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const
 bool triangles_intersect(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
 // Number of intersecting pairs of triangles that share no node.
 int count_self_intersections(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<Vec3>& x);
+// Number of intersecting pairs of a face of A (positions xa) and a face of B (positions xb).
+int count_intersections_between(const std::vector<std::array<int32_t, 3>>& faces_a, const std::vector<Vec3>& xa,
+                                const std::vector<std::array<int32_t, 3>>& faces_b, const std::vector<Vec3>& xb);
 
 }  // namespace vdc

@@ -62,18 +62,9 @@ TEST(Garments, DressIsSewnClosedAndClearOfTheBody) {
     closest = std::min(closest, best);
   }
   EXPECT_GT(closest, 0.005);
-  int crossings = 0;
-  for (FaceId f : dress.faces()) {
-    const std::array<Vec3, 3> t{dress.x(dress.face_node(f, 0)), dress.x(dress.face_node(f, 1)), dress.x(dress.face_node(f, 2))};
-    Aabb box;
-    for (const Vec3& p : t) box.grow(p);
-    tree.query(box, [&](int32_t g) {
-      const auto& s = b.faces[static_cast<std::size_t>(g)];
-      const bool hit = triangles_intersect(t, {b.positions[static_cast<std::size_t>(s[0].node)], b.positions[static_cast<std::size_t>(s[1].node)],
-                                           b.positions[static_cast<std::size_t>(s[2].node)]});
-      crossings += hit;
-    });
-  }
+  std::vector<std::array<int32_t, 3>> body_faces;
+  for (const auto& f : b.faces) body_faces.push_back({f[0].node, f[1].node, f[2].node});
+  const int crossings = count_intersections_between(faces, x, body_faces, b.positions);
   EXPECT_EQ(crossings, 0);
   std::cout << "dress: " << dress.num_faces() << " faces, closest to the body " << closest * 1000 << " mm\n";
 }
