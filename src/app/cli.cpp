@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "io/run_output.hpp"
 #include "scene/scene.hpp"
-#include "sim/simulation.hpp"
+#include "sim/ensemble.hpp"
 
 namespace vdc {
 
@@ -120,10 +120,10 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     line_open = false;
     err << "vdcloth: " << msg << std::endl;
   };
-  Simulation sim(std::move(scene), SimOptions{args.mode, threads}, log);
+  Ensemble sim(std::move(scene), SimOptions{args.mode, threads}, log);
   RunOutput output(dir);
   output.write_frame(sim, 0);
-  out << "vdcloth: " << sim.scene().name << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", "
+  out << "vdcloth: " << sim.name() << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", "
       << threads << " thread(s), " << sim.num_faces() << " faces, output " << dir << std::endl;
 
   auto t0 = std::chrono::steady_clock::now();

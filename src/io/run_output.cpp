@@ -40,18 +40,21 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
             "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds\n";
 }
 
-void RunOutput::write_frame(const Simulation& sim, int frame) const {
-  for (const auto& g : sim.scene().garments)
-    if (!write_obj(g.mesh, frame_file(dir_, "cloth", g.name, frame)))
-      throw InputError(frame_file(dir_, "cloth", g.name, frame), "", "cannot write");
-  // View mode: each garment's faces with their view factors, beside the OBJ.
-  for (const auto& g : sim.scene().garments)
-    if (g.mesh.face_attrs().has(kViewFactorAttr) &&
-        !write_ply_with_face_values(g.mesh, frame_file(dir_, "cloth", g.name, frame, ".ply"), "view", kViewFactorAttr))
-      throw InputError(frame_file(dir_, "cloth", g.name, frame, ".ply"), "", "cannot write");
-  for (const auto& o : sim.scene().obstacles)
-    if (!write_obj(o.mesh, frame_file(dir_, "obstacle", o.name, frame)))
-      throw InputError(frame_file(dir_, "obstacle", o.name, frame), "", "cannot write");
+void RunOutput::write_frame(const Ensemble& run, int frame) const {
+  for (const auto& part : run.parts()) {
+    for (const auto& g : part->scene().garments) {
+      if (!write_obj(g.mesh, frame_file(dir_, "cloth", g.name, frame)))
+        throw InputError(frame_file(dir_, "cloth", g.name, frame), "", "cannot write");
+      // View mode: each garment's faces with their view factors, beside the OBJ.
+      if (g.mesh.face_attrs().has(kViewFactorAttr) &&
+          !write_ply_with_face_values(g.mesh, frame_file(dir_, "cloth", g.name, frame, ".ply"), "view", kViewFactorAttr))
+        throw InputError(frame_file(dir_, "cloth", g.name, frame, ".ply"), "", "cannot write");
+    }
+    // Obstacles of no group are in every part: written once, from the first.
+    for (const auto& o : part->scene().obstacles)
+      if ((part == run.parts().front() || !o.group.empty()) && !write_obj(o.mesh, frame_file(dir_, "obstacle", o.name, frame)))
+        throw InputError(frame_file(dir_, "obstacle", o.name, frame), "", "cannot write");
+  }
 }
 
 void RunOutput::write_stats_row(const FrameStats& s) {
@@ -71,25 +74,28 @@ void RunOutput::write_stats_row(const FrameStats& s) {
   ++rows_;
 }
 
-void RunOutput::write_summary(const Simulation& sim, const std::string& status, const std::string& error, double total_seconds,
+void RunOutput::write_summary(const Ensemble& run, const std::string& status, const std::string& error, double total_seconds,
                               int frames_done, int threads) const {
   nlohmann::json j;
-  j["scene"] = sim.scene().path;
-  j["name"] = sim.scene().name;
+  const Scene& scene = run.parts().front()->scene();
+  j["scene"] = run.path();
+  j["name"] = run.name();
   j["status"] = status;
   if (!error.empty()) j["error"] = error;
-  j["mode"] = sim_mode_name(sim.options().mode);
+  j["mode"] = sim_mode_name(run.options().mode);
   j["threads"] = threads;
+  j["groups"] = run.parts().size();
   j["frames"] = frames_done;
-  j["frame_time"] = sim.scene().frame_time;
-  j["substeps"] = sim.scene().substeps;
-  j["linear_solver"] = linear_solver_name(sim.scene().solver.linear);
+  j["frame_time"] = scene.frame_time;
+  j["substeps"] = scene.substeps;
+  j["linear_solver"] = linear_solver_name(scene.solver.linear);
   j["total_seconds"] = total_seconds;
   j["seconds_per_frame"] = {{"mean", rows_ ? sum_seconds_ / rows_ : 0.0}, {"max", max_seconds_}};
   j["faces"] = {{"min", min_faces_}, {"max", max_faces_}, {"mean", rows_ ? sum_faces_ / rows_ : 0.0}};
   nlohmann::json garments = nlohmann::json::array();
-  for (const auto& g : sim.scene().garments)
-    garments.push_back({{"name", g.name}, {"material", g.material.name}, {"faces", g.mesh.num_faces()}, {"vertices", g.mesh.num_nodes()}});
+  for (const auto& part : run.parts())
+    for (const auto& g : part->scene().garments)
+      garments.push_back({{"name", g.name}, {"material", g.material.name}, {"faces", g.mesh.num_faces()}, {"vertices", g.mesh.num_nodes()}});
   j["garments"] = garments;
   std::ofstream out(dir_ + "/summary.json");
   out << j.dump(2) << "\n";

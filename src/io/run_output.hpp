@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "sim/simulation.hpp"
+#include "sim/ensemble.hpp"
 
 namespace vdc {
 
@@ -13,10 +13,10 @@ class RunOutput {
   // Creates DIR and DIR/frames, removing frame files of an earlier run. Throws InputError if the
   // directory cannot be made.
   explicit RunOutput(const std::string& dir);
-  void write_frame(const Simulation& sim, int frame) const;  // meshes of every garment and obstacle
+  void write_frame(const Ensemble& run, int frame) const;  // meshes of every garment and obstacle
   void write_stats_row(const FrameStats& s);
   // status: "done" or "failed"; error: message when failed.
-  void write_summary(const Simulation& sim, const std::string& status, const std::string& error, double total_seconds,
+  void write_summary(const Ensemble& run, const std::string& status, const std::string& error, double total_seconds,
                      int frames_done, int threads) const;
   const std::string& dir() const { return dir_; }
 

@@ -111,7 +111,16 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
   auto& face = mesh.face_attrs().get_or_add<Mat2>(kFaceSizingAttr, Mat2::Zero());
   const std::vector<Vec3> normals = node_normals(mesh);
   for (FaceId f : mesh.faces()) face[f] = clamp_sizing(face_sizing_unclamped(mesh, f, normals, p, planes), p);
-  if (modifier) modifier->modify(mesh, face);
+  if (modifier) {
+    const std::vector<Mat2> before = face.raw();
+    modifier->modify(mesh, face);
+    // A modifier trades visual detail, not collision safety: what it changed stays within
+    // size_max, where the obstacle planes are searched, and keeps the obstacle-proximity tensor,
+    // so a coarsened garment cannot cut into the body it hangs on.
+    for (FaceId f : mesh.faces())
+      if (face[f] != before[static_cast<std::size_t>(f.idx)])
+        face[f] = clamp_sizing(planes.empty() ? face[f] : tensor_max(face[f], obstacle_metric(mesh, f, planes)), p);
+  }
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());
   for (VertId v : mesh.verts()) {
     Mat2 sum = Mat2::Zero();

@@ -158,9 +158,10 @@ void parse_handles(const JsonValue& list, GarmentSpec& g) {
 }
 
 GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
-  j.only_keys({"name", "mesh", "material", "transform", "handles", "rest_shape"});
+  j.only_keys({"name", "group", "mesh", "material", "transform", "handles", "rest_shape"});
   GarmentSpec g;
   g.name = j.at("name").string();
+  g.group = j.string_or("group", "");
   g.mesh = parse_mesh(j.at("mesh"), scene_path, true);
   g.material = parse_material_ref(j.at("material"), scene_path);
   if (auto t = j.find("transform")) {
@@ -177,9 +178,10 @@ GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
 }
 
 ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time) {
-  j.only_keys({"name", "mesh", "character", "transform", "motion"});
+  j.only_keys({"name", "group", "mesh", "character", "transform", "motion"});
   ObstacleSpec o;
   o.name = j.at("name").string();
+  o.group = j.string_or("group", "");
   if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
   if (auto c = j.find("character")) {
     // The character places itself (its transform applies to the skinned body every frame).
@@ -370,9 +372,43 @@ Scene load_scene(const std::string& path) {
       s.obstacles.push_back(parse_obstacle(o, path, s.frame_time));
       check_name(o.at("name"), s.obstacles.back().name, names);
     }
+  for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
+    const std::string& group = s.obstacles[k].group;
+    if (!group.empty() && std::none_of(s.garments.begin(), s.garments.end(), [&](const GarmentSpec& g) { return g.group == group; }))
+      j.at("obstacles").items()[k].at("group").fail("no garment is in group '" + group + "'");
+  }
   if (auto c = j.find("camera")) s.camera = parse_camera(*c);
   if (auto v = j.find("view")) s.view = parse_view(*v);
   return s;
+}
+
+std::vector<Scene> split_groups(Scene scene) {
+  std::vector<std::string> groups;
+  for (const auto& g : scene.garments)
+    if (std::find(groups.begin(), groups.end(), g.group) == groups.end()) groups.push_back(g.group);
+  std::vector<Scene> parts;
+  for (const std::string& group : groups) {
+    Scene part;
+    part.path = scene.path;
+    part.name = scene.name;
+    part.frame_time = scene.frame_time;
+    part.frames = scene.frames;
+    part.substeps = scene.substeps;
+    part.gravity = scene.gravity;
+    part.air = scene.air;
+    part.solver = scene.solver;
+    part.remeshing = scene.remeshing;
+    part.collision = scene.collision;
+    part.fixed_size = scene.fixed_size;
+    part.camera = scene.camera;
+    part.view = scene.view;
+    for (auto& g : scene.garments)
+      if (g.group == group) part.garments.push_back(std::move(g));
+    for (const auto& o : scene.obstacles)
+      if (o.group == group || o.group.empty()) part.obstacles.push_back(o);
+    parts.push_back(std::move(part));
+  }
+  return parts;
 }
 
 }  // namespace vdc

@@ -22,6 +22,7 @@ namespace vdc {
 
 struct GarmentSpec {
   std::string name;
+  std::string group;  // garments of different groups never touch: they are simulated apart
   Mesh mesh;  // placed in world space; node attributes kHandleAttr and kAnchorAttr set
   Material material;
   std::vector<ClothHandle> handles;
@@ -31,6 +32,7 @@ struct GarmentSpec {
 // x(t) = R(rotate(t)) (x_placed - pivot) + pivot + translate(t), pivot the placed centroid.
 struct ObstacleSpec {
   std::string name;
+  std::string group;  // collides with its group's garments only; empty: with every garment
   Mesh mesh;               // world positions at the current time
   std::vector<Vec3> rest;  // placed positions, by node index
   Vec3 pivot = Vec3::Zero();
@@ -79,5 +81,10 @@ struct Scene {
 // Reads and checks a scene and everything it references. Throws InputError naming the file, the
 // key path (e.g. garments[0].material) and the problem.
 Scene load_scene(const std::string& path);
+
+// The scene's independent parts, one per garment group in order of first appearance: each has
+// its group's garments, its group's obstacles and the obstacles of no group (copied into every
+// part), and the scene's settings. A scene without groups is one part.
+std::vector<Scene> split_groups(Scene scene);
 
 }  // namespace vdc

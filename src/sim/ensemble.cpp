@@ -1,0 +1,99 @@
+#include "sim/ensemble.hpp"
+
+#include <chrono>
+#include <exception>
+
+namespace vdc {
+
+void accumulate(FrameStats& t, const FrameStats& p) {
+  t.faces += p.faces;
+  t.vertices += p.vertices;
+  t.substeps += p.substeps;
+  t.halvings += p.halvings;
+  t.solver_iterations += p.solver_iterations;
+  t.factorizations += p.factorizations;
+  t.assemble_seconds += p.assemble_seconds;
+  t.solve_seconds += p.solve_seconds;
+  t.remesh_seconds += p.remesh_seconds;
+  t.splits += p.splits;
+  t.flips += p.flips;
+  t.collapses += p.collapses;
+  t.proximities += p.proximities;
+  t.untangle_moves += p.untangle_moves;
+  t.visible_faces += p.visible_faces;
+  t.back_facing_faces += p.back_facing_faces;
+  t.out_of_frame_faces += p.out_of_frame_faces;
+  t.view_seconds += p.view_seconds;
+  t.impacts += p.impacts;
+  t.collision_iterations += p.collision_iterations;
+  t.collision_fallbacks += p.collision_fallbacks;
+  t.collision_seconds += p.collision_seconds;
+  t.energy.kinetic += p.energy.kinetic;
+  t.energy.gravitational += p.energy.gravitational;
+  t.energy.elastic += p.energy.elastic;
+}
+
+namespace {
+// Runs body(k) for k in [0, n) on `team` threads, then rethrows the first exception thrown.
+template <class F>
+void for_each_part(int n, int team, F&& body) {
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+  for (int k = 0; k < n; ++k) {
+    try {
+      body(k);
+    } catch (...) {
+      errors[static_cast<std::size_t>(k)] = std::current_exception();
+    }
+  }
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+}  // namespace
+
+Ensemble::Ensemble(Scene scene, const SimOptions& options, Simulation::Log log)
+    : name_(scene.name), path_(scene.path), options_(options), log_(std::move(log)) {
+  std::vector<Scene> scenes = split_groups(std::move(scene));
+  const int n = static_cast<int>(scenes.size());
+  team_ = std::max(1, std::min(options.threads, n));
+  SimOptions part_options = options;
+  part_options.threads = std::max(1, options.threads / n);
+  std::vector<std::string> labels;
+  for (const Scene& s : scenes) labels.push_back(n > 1 ? s.garments.front().group + ": " : "");
+  parts_.resize(scenes.size());
+  for_each_part(n, team_, [&](int k) {
+    const auto i = static_cast<std::size_t>(k);
+    Simulation::Log part_log;
+    if (log_)
+      part_log = [this, label = labels[i]](const std::string& msg) {
+        std::lock_guard<std::mutex> lock(log_mutex_);
+        log_(label + msg);
+      };
+    parts_[i] = std::make_unique<Simulation>(std::move(scenes[i]), part_options, part_log);
+  });
+}
+
+FrameStats Ensemble::step_frame() {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<FrameStats> frames(parts_.size());
+  for_each_part(static_cast<int>(parts_.size()), team_, [&](int k) { frames[static_cast<std::size_t>(k)] = parts_[static_cast<std::size_t>(k)]->step_frame(); });
+  FrameStats total;
+  total.frame = frames.front().frame;
+  for (const FrameStats& f : frames) accumulate(total, f);
+  total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return total;
+}
+
+int Ensemble::num_faces() const {
+  int n = 0;
+  for (const auto& p : parts_) n += p->num_faces();
+  return n;
+}
+
+int Ensemble::num_vertices() const {
+  int n = 0;
+  for (const auto& p : parts_) n += p->num_vertices();
+  return n;
+}
+
+}  // namespace vdc
