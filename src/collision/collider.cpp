@@ -139,12 +139,21 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       ImpactConstraint c;
       c.weights = w;
       c.normal = n;
+      double weight_fixed = 0;
       for (int j = 0; j < 4; ++j) {
         const auto ju = static_cast<std::size_t>(j);
         const PointRef& p = pts[ju];
         const bool movable = p.obstacle < 0 && !fixed[static_cast<std::size_t>(p.index)];
         c.nodes[ju] = movable ? p.index : -1;
         c.fixed[ju] = p1(p);
+        if (!movable) {
+          c.fixed_motion += std::abs(w[ju]) * (p1(p) - p0(p));
+          weight_fixed += std::abs(w[ju]);
+        }
+      }
+      if (weight_fixed > 0) {
+        c.fixed_motion /= weight_fixed;
+        c.has_fixed = true;
       }
       out = c;
     };
@@ -292,13 +301,26 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     }
   }
   if (!clear) {
-    // Fallback: every zone still in contact goes back to where it started the step.
+    // Fallback: every zone still in contact goes back to where it started the step, moved with
+    // the obstacles it touches (their mean displacement at its contacts), so that a zone caught
+    // on a moving body rides along rather than being swallowed by it.
     std::map<int32_t, std::vector<int32_t>> members;
-    for (std::size_t i = 0; i < constraints.size(); ++i)
+    std::map<int32_t, std::pair<Vec3, int>> carried;
+    for (std::size_t i = 0; i < constraints.size(); ++i) {
+      const int32_t root = find(parent, constraint_anchor[i]);
       for (int32_t n : constraints[i].nodes)
-        if (n >= 0) members[find(parent, n)].push_back(n);
+        if (n >= 0) members[root].push_back(n);
+      if (constraints[i].has_fixed) {
+        auto& [sum, count] = carried[root];
+        if (count == 0) sum = Vec3::Zero();
+        sum += constraints[i].fixed_motion;
+        ++count;
+      }
+    }
     for (const auto& [root, nodes] : members) {
-      for (int32_t n : nodes) x_end.segment<3>(3 * n) = x_start.segment<3>(3 * n);
+      const auto it = carried.find(root);
+      const Vec3 d = it == carried.end() ? Vec3::Zero() : Vec3(it->second.first / it->second.second);
+      for (int32_t n : nodes) x_end.segment<3>(3 * n) = x_start.segment<3>(3 * n) + d;
       ++stats.fallbacks;
     }
   }

@@ -20,6 +20,10 @@ struct ImpactConstraint {
   std::array<double, 4> weights;
   std::array<Vec3, 4> fixed;  // used where nodes[j] < 0
   Vec3 normal;                // unit
+  // Displacement over the step of the fixed points (obstacle or handle), weighted by |w_j|;
+  // zero when all points are movable. The fallback moves a stuck zone with it.
+  Vec3 fixed_motion = Vec3::Zero();
+  bool has_fixed = false;
 };
 
 struct ProjectionReport {

@@ -37,7 +37,7 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   if (!stats_) throw InputError(dir + "/stats.csv", "", "cannot write");
   stats_ << "frame,faces,vertices,seconds,substeps,halvings,solver_iterations,factorizations,assemble_seconds,solve_seconds,"
             "remesh_seconds,splits,flips,collapses,collision_seconds,impacts,collision_iterations,collision_fallbacks,kinetic_energy,gravitational_energy,elastic_energy,"
-            "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds\n";
+            "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds,velocity_clamps\n";
 }
 
 void RunOutput::write_frame(const Ensemble& run, int frame) const {
@@ -59,11 +59,11 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
 
 void RunOutput::write_stats_row(const FrameStats& s) {
   char line[1024];
-  std::snprintf(line, sizeof line, "%d,%d,%d,%.6f,%d,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d,%d,%.6f,%d,%d,%d,%.9g,%.9g,%.9g,%d,%d,%d,%d,%d,%.6f\n", s.frame, s.faces, s.vertices, s.seconds,
+  std::snprintf(line, sizeof line, "%d,%d,%d,%.6f,%d,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d,%d,%.6f,%d,%d,%d,%.9g,%.9g,%.9g,%d,%d,%d,%d,%d,%.6f,%d\n", s.frame, s.faces, s.vertices, s.seconds,
                 s.substeps, s.halvings, s.solver_iterations, s.factorizations, s.assemble_seconds, s.solve_seconds, s.remesh_seconds, s.splits, s.flips, s.collapses, s.collision_seconds, s.impacts, s.collision_iterations,
                 s.collision_fallbacks, s.energy.kinetic,
                 s.energy.gravitational, s.energy.elastic, s.proximities, s.untangle_moves, s.visible_faces,
-                s.back_facing_faces, s.out_of_frame_faces, s.view_seconds);
+                s.back_facing_faces, s.out_of_frame_faces, s.view_seconds, s.velocity_clamps);
   stats_ << line << std::flush;
   if (rows_ == 0) min_faces_ = max_faces_ = s.faces;
   min_faces_ = std::min(min_faces_, s.faces);

@@ -2,6 +2,7 @@
 #include "physics/integrator.hpp"
 
 #include <chrono>
+#include <cmath>
 
 namespace vdc {
 
@@ -18,7 +19,8 @@ ImplicitIntegrator::ImplicitIntegrator(const ClothModel& model, LinearSolverKind
 }
 
 StepReport ImplicitIntegrator::step(Eigen::VectorXd& x, Eigen::VectorXd& v, const std::vector<VelocityConstraint>& constraints,
-                                    const StepParams& p, double max_dv, const std::vector<ContactTerm>& contacts) {
+                                    const StepParams& p, double max_dv, const std::vector<ContactTerm>& contacts,
+                                    VelocityLimit limit) {
   StepReport r;
   auto t0 = std::chrono::steady_clock::now();
   assembler_.assemble(x, v, p);
@@ -43,7 +45,13 @@ StepReport ImplicitIntegrator::step(Eigen::VectorXd& x, Eigen::VectorXd& v, cons
   for (const auto& c : constraints) constrained[static_cast<std::size_t>(c.node)] = 1;
   for (int64_t i = 0; i < x.size() / 3; ++i)
     if (!constrained[static_cast<std::size_t>(i)]) r.max_dv = std::max(r.max_dv, dv_.segment<3>(3 * i).norm());
-  if (!(r.max_dv <= max_dv)) {
+  if (!(r.max_dv <= max_dv) && limit == VelocityLimit::Clamp && std::isfinite(r.max_dv)) {
+    for (int64_t i = 0; i < x.size() / 3; ++i)
+      if (const double d = dv_.segment<3>(3 * i).norm(); d > max_dv && !constrained[static_cast<std::size_t>(i)]) {
+        dv_.segment<3>(3 * i) *= max_dv / d;
+        ++r.clamped_nodes;
+      }
+  } else if (!(r.max_dv <= max_dv)) {
     r.failure = "velocity change " + std::to_string(r.max_dv) + " m/s exceeds the limit " + std::to_string(max_dv) + " m/s";
     dv_.setZero();
     return r;

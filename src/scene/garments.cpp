@@ -59,38 +59,56 @@ class Sewing {
   MeshSource src_;
 };
 
+// A tube around the figure's vertical axis from ring (top.y, top.r) down to ring (bottom.y,
+// bottom.r), cut from its developed pattern (a rectangle, or an annular sector for a cone) and
+// sewn at the back. With `sewn_top`, the top ring is those nodes. Returns the node rows, bottom
+// (i = 0) to top.
+std::vector<std::vector<int32_t>> add_tube(Sewing& sew, const TubeParams& p, const std::vector<int32_t>* sewn_top) {
+  const int n = p.around;
+  // Around the body from the back (z < 0) through the left side (+x) to the front and round.
+  auto ring = [&](double r, double y, int k) {
+    const double theta = M_PI + 2 * M_PI * k / n;
+    return Vec3(r * std::sin(theta), y, r * std::cos(theta));
+  };
+  const double drop = p.top_height - p.bottom_height, flare = p.bottom_radius - p.top_radius, slant = std::hypot(drop, flare);
+  const int rows = std::max(1, static_cast<int>(std::round(slant / p.cell)));
+  // Row i from the bottom; in the pattern, a cone is developed about its apex.
+  auto radius = [&](int i) { return p.bottom_radius - flare * i / rows; };
+  const bool cone = std::abs(flare) > 1e-9 * slant;
+  const double apex = cone ? p.top_radius * slant / flare : 0;  // apex to the top ring, along the slant (signed)
+  const double sector = cone ? 2 * M_PI * p.top_radius / apex : 0;
+  return sew.add_piece(
+      rows, n, true,
+      [&](int i, int k) { return sewn_top && i == rows ? (*sewn_top)[static_cast<std::size_t>(k)] : -1; },
+      [&](int i, int k) { return ring(radius(i), p.bottom_height + drop * i / rows, k); },
+      [&](int i, int k) {
+        if (!cone) return Vec2(2 * M_PI * p.top_radius * k / n, slant * i / rows);
+        const double r = apex + slant * (rows - i) / rows, b = sector * k / n;
+        return Vec2(r * std::sin(b), -r * std::cos(b));
+      },
+      [](const Vec3& x) { return Vec3(x.x(), 0, x.z()); });
+}
+
 }  // namespace
+
+MeshSource make_tube(const TubeParams& p) {
+  Sewing sew;
+  add_tube(sew, p, nullptr);
+  return sew.take();
+}
 
 MeshSource make_dress(const DressParams& p) {
   Sewing sew;
   const int n = p.around;
-  // Around the body from the back (z < 0) through the left side (+x) to the front and round.
   auto theta = [&](int k) { return M_PI + 2 * M_PI * k / n; };
   auto ring = [&](double r, double y, int k) { return Vec3(r * std::sin(theta(k)), y, r * std::cos(theta(k))); };
-  auto radial = [](const Vec3& x) { return Vec3(x.x(), 0, x.z()); };
   const double column = 2 * M_PI * p.bodice_radius / n;  // material width of a column
 
-  // Bodice: a tube from the waist up to the top edge, sewn at the back.
-  const double height = p.top_height - p.waist_height;
-  const int rows_b = std::max(1, static_cast<int>(std::round(height / p.cell)));
-  const auto bodice = sew.add_piece(
-      rows_b, n, true, [](int, int) { return -1; }, [&](int i, int k) { return ring(p.bodice_radius, p.waist_height + height * i / rows_b, k); },
-      [&](int i, int k) { return Vec2(column * k, height * i / rows_b); }, radial);
-
-  // Skirt: a cone from the waist (sewn to the bodice) down to the hem, cut from an annular
-  // sector (the cone developed flat), sewn at the back.
-  const double drop = p.waist_height - p.hem_height, flare = p.hem_radius - p.bodice_radius, slant = std::hypot(drop, flare);
-  const int rows_s = std::max(1, static_cast<int>(std::round(slant / p.cell)));
-  const double apex = p.bodice_radius * slant / flare;  // from the cone's apex to the waist, along the slant
-  const double sector = 2 * M_PI * p.bodice_radius / apex;
-  sew.add_piece(
-      rows_s, n, true, [&](int i, int k) { return i == 0 ? bodice[0][static_cast<std::size_t>(k)] : -1; },
-      [&](int i, int k) { return ring(p.bodice_radius + flare * i / rows_s, p.waist_height - drop * i / rows_s, k); },
-      [&](int i, int k) {
-        const double r = apex + slant * i / rows_s, b = sector * k / n;
-        return Vec2(r * std::sin(b), -r * std::cos(b));
-      },
-      radial);
+  // Bodice: a cylinder from the waist up to the top edge; skirt: a cone from the waist (sewn to
+  // the bodice) down to the hem.
+  const auto bodice = add_tube(sew, {p.around, p.top_height, p.bodice_radius, p.waist_height, p.bodice_radius, p.cell}, nullptr);
+  add_tube(sew, {p.around, p.waist_height, p.bodice_radius, p.hem_height, p.hem_radius, p.cell}, &bodice[0]);
+  const int rows_b = static_cast<int>(bodice.size()) - 1;
 
   // Straps: arcs over the shoulders from the top edge in front to the top edge behind, two
   // columns wide, each end sewn to the bodice's top row.

@@ -6,6 +6,18 @@
 
 namespace vdc {
 
+// A tube around the figure's vertical axis between two rings, a cylinder or a cone, cut from its
+// developed pattern and sewn at the back: a skirt, a hakama, a belt. Outer side outwards.
+struct TubeParams {
+  int around = 48;             // segments around
+  double top_height = 1.0;     // m
+  double top_radius = 0.2;     // m
+  double bottom_height = 0.1;  // m, below the top
+  double bottom_radius = 0.4;  // m
+  double cell = 0.03;          // m, target edge length down the pattern
+};
+MeshSource make_tube(const TubeParams& p);
+
 // A dress: a bodice (a tube from the waist to under the arms, sewn at the back), a flared skirt
 // (a cone cut from an annular sector, sewn at the back and to the bodice at the waist) and two
 // shoulder straps sewn to the bodice's top edge front and back. Outer side outwards.

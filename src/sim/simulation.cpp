@@ -164,7 +164,7 @@ std::vector<VelocityConstraint> Simulation::constraints(double t_end, double h) 
   return out;
 }
 
-void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
+void Simulation::advance(double t, double h, int depth, FrameStats& stats, double refused_dv) {
   StepParams p;
   p.h = h;
   p.gravity = scene_.gravity;
@@ -182,11 +182,33 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
   }
   const std::vector<ContactTerm> contacts = proximity_contacts(fixed, obstacles, h, stats);
   const Eigen::VectorXd x_start = x_, v_start = v_;
-  StepReport r = integrator_->step(x_, v_, held, p, scene_.solver.max_velocity_change, contacts);
+  const double limit = scene_.solver.max_velocity_change;
+  StepReport r = integrator_->step(x_, v_, held, p, limit, contacts);
   stats.assemble_seconds += r.assemble_seconds;
   stats.solve_seconds += r.solve_seconds;
   stats.solver_iterations += r.solver_iterations;
   stats.factorizations += r.factorizations;
+  // A velocity change that does not shrink with the step (the contact penalty pushing a deep
+  // penetration out asks for a fixed displacement, so a velocity growing as 1/h) or that remains
+  // at the smallest step: clamp it to the limit rather than end the run.
+  if (!r.ok && std::isfinite(r.max_dv) && r.max_dv > limit &&
+      (depth >= scene_.solver.max_step_halvings || (refused_dv > 0 && r.max_dv >= refused_dv))) {
+    const StepReport c = integrator_->step(x_, v_, held, p, limit, contacts, VelocityLimit::Clamp);
+    stats.assemble_seconds += c.assemble_seconds;
+    stats.solve_seconds += c.solve_seconds;
+    stats.solver_iterations += c.solver_iterations;
+    stats.factorizations += c.factorizations;
+    if (c.ok) {
+      ++stats.velocity_clamps;
+      if (log_) {
+        std::ostringstream msg;
+        msg << "frame " << frame_ + 1 << ": step at t = " << t << " s (h = " << h << " s): velocity change " << r.max_dv
+            << " m/s does not shrink with the step; clamped to " << limit << " m/s at " << c.clamped_nodes << " node(s)";
+        log_(msg.str());
+      }
+      r = c;
+    }
+  }
   if (r.ok) {
     // Impact zones that do not separate: first retry the step in halves (smaller motions meet
     // fewer impacts at once); at the last level the zones keep their start positions.
@@ -212,8 +234,9 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats) {
         << "; retrying as two steps of " << h / 2 << " s";
     log_(msg.str());
   }
-  advance(t, h / 2, depth + 1, stats);
-  advance(t + h / 2, h / 2, depth + 1, stats);
+  const double dv = r.max_dv > scene_.solver.max_velocity_change ? r.max_dv : 0;
+  advance(t, h / 2, depth + 1, stats, dv);
+  advance(t + h / 2, h / 2, depth + 1, stats, dv);
 }
 
 std::vector<ContactTerm> Simulation::proximity_contacts(const std::vector<char>& fixed, const ObstacleMotion& obstacles, double h,
@@ -252,7 +275,7 @@ int Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, con
     if (c.fallbacks > 0 && log_) {
       std::ostringstream msg;
       msg << "frame " << frame_ + 1 << ": " << c.fallbacks << " impact zone(s) did not separate in " << c.iterations
-          << " rounds at step " << h << " s; they keep their start-of-step positions";
+          << " rounds at step " << h << " s; they keep their start-of-step positions, carried by the obstacles they touch";
       log_(msg.str());
     }
   }

@@ -49,6 +49,7 @@ struct FrameStats {
   int visible_faces = 0, back_facing_faces = 0, out_of_frame_faces = 0;
   double view_seconds = 0;
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
+  int velocity_clamps = 0;  // steps whose velocity changes were clamped as a last resort
   double collision_seconds = 0;
   EnergyReport energy;
 };
@@ -77,7 +78,9 @@ class Simulation {
   void gather_state();                  // meshes -> x_, v_
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
-  void advance(double t, double h, int depth, FrameStats& stats);
+  // One step of size h at time t, at halving depth `depth`; refused_dv is the velocity change
+  // that made the parent step refuse (0 at the top), to tell when halving stops helping.
+  void advance(double t, double h, int depth, FrameStats& stats, double refused_dv = 0);
   // Obstacle vertex positions at the start and end of a step, per obstacle.
   struct ObstacleMotion {
     std::vector<std::vector<Vec3>> start, end;
