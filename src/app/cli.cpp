@@ -1,5 +1,7 @@
 #include "app/cli.hpp"
 
+#include "app/table1.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <iomanip>
@@ -21,14 +23,16 @@ const char* kMainHelp =
     "\n"
     "usage:\n"
     "  vdcloth run SCENE.json [options]   simulate a scene\n"
+    "  vdcloth bench table1 [options]     the seed paper's Table 1 on the project's scenes\n"
     "  vdcloth --help                     this text\n"
     "  vdcloth --version                  version\n"
     "\n"
-    "`vdcloth run --help` lists the options of run. Exit status: 0 done, 2 bad input or usage,\n"
+    "`vdcloth run --help` and `vdcloth bench table1 --help` list the options. Exit status: 0 done, 2 bad input or usage,\n"
     "3 a simulation failure that could not be recovered.\n";
 
 const char* kRunHelp =
     "usage: vdcloth run SCENE.json [--mode fixed|adaptive|view] [--frames N] [--out DIR] [--threads N]\n"
+    "                  [--mesh-every N]\n"
     "\n"
     "Simulates SCENE.json and writes DIR/stats.csv (one row a frame), DIR/frames/ (one OBJ per garment\n"
     "and obstacle per frame: cloth_<name>.<frame>.obj, obstacle_<name>.<frame>.obj, frame 0000 is the\n"
@@ -40,6 +44,7 @@ const char* kRunHelp =
     "  --frames N    number of frames to simulate (default: the scene's `frames`)\n"
     "  --out DIR     output directory (default: out/<scene name>)\n"
     "  --threads N   worker threads (default: all cores)\n"
+    "  --mesh-every N  write the meshes of frames 0, N, 2N, ... only; 0: none (default: 1, every frame)\n"
     "  --help        this text\n";
 
 struct RunArgs {
@@ -48,12 +53,10 @@ struct RunArgs {
   std::optional<int> frames;
   std::string out;
   int threads = 0;
+  int mesh_every = 1;  // write meshes at frames that are multiples of this; 0: none
 };
 
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+}  // namespace
 
 int parse_positive_int(const std::string& option, const std::string& value) {
   std::size_t used = 0;
@@ -67,6 +70,8 @@ int parse_positive_int(const std::string& option, const std::string& value) {
     throw UsageError(option + " expects a whole number from 1 to 1000000, got '" + value + "'");
   return static_cast<int>(n);
 }
+
+namespace {
 
 RunArgs parse_run_args(const std::vector<std::string>& args) {
   RunArgs r;
@@ -86,6 +91,9 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
       if (r.out.empty()) throw UsageError("--out needs a directory");
     } else if (a == "--threads") {
       r.threads = parse_positive_int(a, value());
+    } else if (a == "--mesh-every") {
+      const std::string& v = value();
+      r.mesh_every = v == "0" ? 0 : parse_positive_int(a, v);
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "'");
     } else if (r.scene.empty()) {
@@ -122,7 +130,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   };
   Ensemble sim(std::move(scene), SimOptions{args.mode, threads}, log);
   RunOutput output(dir);
-  output.write_frame(sim, 0);
+  if (args.mesh_every > 0) output.write_frame(sim, 0);
   out << "vdcloth: " << sim.name() << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", "
       << threads << " thread(s), " << sim.num_faces() << " faces, output " << dir << std::endl;
 
@@ -131,7 +139,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   try {
     for (int f = 0; f < frames; ++f) {
       FrameStats s = sim.step_frame();
-      output.write_frame(sim, s.frame);
+      if (args.mesh_every > 0 && s.frame % args.mesh_every == 0) output.write_frame(sim, s.frame);
       output.write_stats_row(s);
       done = s.frame;
       double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -172,6 +180,10 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     if (args[0] == "--version") {
       out << "vdcloth " << VDCLOTH_VERSION << "\n";
       return kExitOk;
+    }
+    if (args[0] == "bench") {
+      if (args.size() < 2 || args[1] != "table1") throw UsageError("bench expects a benchmark name: table1");
+      return table1_command(std::vector<std::string>(args.begin() + 2, args.end()), out, err);
     }
     if (args[0] != "run") throw UsageError("unknown command '" + args[0] + "' (try vdcloth --help)");
     for (std::size_t i = 1; i < args.size(); ++i)

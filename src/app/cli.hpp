@@ -2,6 +2,7 @@
 // usage, 3 a simulation failure that could not be recovered).
 #pragma once
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,14 @@ namespace vdc {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitSimulationFailed = 3;
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The whole number of an option's value, 1 to 1,000,000; UsageError naming the option otherwise.
+int parse_positive_int(const std::string& option, const std::string& value);
 
 // `interactive`: out is a terminal, so progress redraws one line instead of logging each frame.
 int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool interactive);

@@ -16,4 +16,12 @@ std::vector<Vec3> Character::positions_at(double t) const {
   return x;
 }
 
+Eigen::Affine3d Character::joint_transform(int joint, double t) const {
+  const Eigen::Isometry3d w = motion_->world(clip_.pose_at(t))[static_cast<std::size_t>(joint)];
+  Eigen::Affine3d placed = Eigen::Affine3d::Identity();
+  placed.linear() = placement_.rotation() * placement_.scale;
+  placed.translation() = placement_.translate;
+  return placed * w;
+}
+
 }  // namespace vdc

@@ -16,6 +16,8 @@ class Character {
   const MeshSource& rest_mesh() const { return body_->rest_mesh(); }  // unplaced, rest pose
   // Placed, skinned vertex positions at scene time t (by mesh node index).
   std::vector<Vec3> positions_at(double t) const;
+  // The placed world transform of a joint (index into the motion's skeleton) at scene time t.
+  Eigen::Affine3d joint_transform(int joint, double t) const;
   const Motion& motion() const { return *motion_; }
   double start() const { return clip_.start; }
   double speed() const { return clip_.speed; }

@@ -1,7 +1,10 @@
-// Handles: garment nodes held in place or moved along a keyframed path, released at a time.
+// Handles: garment nodes held in place, moved along a keyframed path, or carried by a joint of
+// an animated character (a waistband tied to the pelvis), released at a time.
 #pragma once
 #include <limits>
+#include <memory>
 
+#include "scene/character.hpp"
 #include "scene/track.hpp"
 
 namespace vdc {
@@ -9,9 +12,20 @@ namespace vdc {
 struct ClothHandle {
   Vec3Track path;  // offsets from the nodes' initial positions; empty: pinned where they start
   double release = std::numeric_limits<double>::infinity();  // s; free from then on
+  // Attached: the nodes move rigidly with this joint of the character from where they are at
+  // time 0 (the path's offsets apply before).
+  std::shared_ptr<const Character> character;
+  int joint = -1;
+  Eigen::Affine3d from_start = Eigen::Affine3d::Identity();  // inverse of the joint's transform at time 0
 
   bool active(double t) const { return t < release; }
-  Vec3 offset(double t) const { return path.at(t); }
+  // The rigid motion carrying the handle's nodes at time t (identity unless attached).
+  Eigen::Affine3d carry(double t) const {
+    return character ? Eigen::Affine3d(character->joint_transform(joint, t) * from_start) : Eigen::Affine3d::Identity();
+  }
+  // Where a node anchored at `anchor` (its position at time 0) is held at time t; `carried` is
+  // carry(t).
+  Vec3 target(const Vec3& anchor, double t, const Eigen::Affine3d& carried) const { return carried * Vec3(anchor + path.at(t)); }
 };
 
 // Names of the node attributes that carry handles through topology changes.

@@ -160,7 +160,7 @@ void parse_handles(const JsonValue& list, GarmentSpec& g) {
   auto& which = g.mesh.node_attrs().get<int32_t>(kHandleAttr);
   auto& anchor = g.mesh.node_attrs().get<Vec3>(kAnchorAttr);
   for (const JsonValue& h : list.items()) {
-    h.only_keys({"nodes", "points", "uv", "release", "path"});
+    h.only_keys({"nodes", "points", "uv", "box", "release", "path", "attach"});
     ClothHandle handle;
     handle.release = h.has("release") ? h.at("release").non_negative() : std::numeric_limits<double>::infinity();
     if (auto path = h.find("path")) handle.path = parse_track(*path, "offset");
@@ -176,7 +176,17 @@ void parse_handles(const JsonValue& list, GarmentSpec& g) {
       for (const JsonValue& p : pts->items()) nodes.push_back(nearest_node(g.mesh, p.vec3()));
     if (auto uvs = h.find("uv"))
       for (const JsonValue& u : uvs->items()) nodes.push_back(nearest_vert_node(g.mesh, u.vec2()));
-    if (nodes.empty()) h.fail("a handle needs at least one of nodes, points or uv");
+    if (auto box = h.find("box")) {
+      const auto corners = box->items();
+      if (corners.size() != 2) box->fail("expected [[x0, y0, z0], [x1, y1, z1]]");
+      const Vec3 lo = corners[0].vec3(), hi = corners[1].vec3();
+      if (!(lo.array() <= hi.array()).all()) box->fail("the first corner must be the lower one on every axis");
+      std::size_t before = nodes.size();
+      for (NodeId n : g.mesh.nodes())
+        if ((g.mesh.x(n).array() >= lo.array()).all() && (g.mesh.x(n).array() <= hi.array()).all()) nodes.push_back(n);
+      if (nodes.size() == before) box->fail("no node of the garment is in the box");
+    }
+    if (nodes.empty()) h.fail("a handle needs at least one of nodes, points, uv or box");
     const auto index = static_cast<int32_t>(g.handles.size());
     for (NodeId n : nodes) {
       if (which[n] >= 0 && which[n] != index) h.fail("node " + std::to_string(n.idx) + " already belongs to another handle");
@@ -403,6 +413,29 @@ Scene load_scene(const std::string& path) {
       s.obstacles.push_back(parse_obstacle(o, path, s.frame_time));
       check_name(o.at("name"), s.obstacles.back().name, names);
     }
+  // Handles attached to a character's joint, now that the obstacles are known.
+  for (std::size_t gi = 0; gi < s.garments.size(); ++gi) {
+    const JsonValue garment = j.at("garments").items()[gi];
+    if (!garment.has("handles")) continue;
+    const auto handles = garment.at("handles").items();
+    for (std::size_t hi = 0; hi < handles.size(); ++hi) {
+      const auto attach = handles[hi].find("attach");
+      if (!attach) continue;
+      attach->only_keys({"obstacle", "joint"});
+      const std::string obstacle = attach->at("obstacle").string(), joint = attach->at("joint").string();
+      const auto o = std::find_if(s.obstacles.begin(), s.obstacles.end(), [&](const ObstacleSpec& x) { return x.name == obstacle; });
+      if (o == s.obstacles.end()) attach->at("obstacle").fail("no obstacle named '" + obstacle + "'");
+      if (!o->character) attach->at("obstacle").fail("'" + obstacle + "' is not a character");
+      if (o->group != s.garments[gi].group) attach->at("obstacle").fail("'" + obstacle + "' is in another group than the garment");
+      const auto& joints = o->character->motion().skeleton.joints;
+      const auto it = std::find_if(joints.begin(), joints.end(), [&](const Joint& x) { return x.name == joint; });
+      if (it == joints.end()) attach->at("joint").fail("the motion has no joint '" + joint + "'");
+      ClothHandle& handle = s.garments[gi].handles[hi];
+      handle.character = o->character;
+      handle.joint = static_cast<int>(it - joints.begin());
+      handle.from_start = handle.character->joint_transform(handle.joint, 0.0).inverse();
+    }
+  }
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     const std::string& group = s.obstacles[k].group;
     if (!group.empty() && std::none_of(s.garments.begin(), s.garments.end(), [&](const GarmentSpec& g) { return g.group == group; }))

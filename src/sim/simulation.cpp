@@ -151,12 +151,15 @@ std::vector<VelocityConstraint> Simulation::constraints(double t_end, double h) 
     const auto& garment = scene_.garments[g];
     const auto& which = garment.mesh.node_attrs().get<int32_t>(kHandleAttr);
     const auto& anchor = garment.mesh.node_attrs().get<Vec3>(kAnchorAttr);
+    std::vector<Eigen::Affine3d> carried;
+    for (const ClothHandle& handle : garment.handles) carried.push_back(handle.carry(t_end));
     for (NodeId n : garment.mesh.nodes()) {
       if (which[n] < 0) continue;
-      const ClothHandle& handle = garment.handles[static_cast<std::size_t>(which[n])];
+      const auto k = static_cast<std::size_t>(which[n]);
+      const ClothHandle& handle = garment.handles[k];
       if (!handle.active(t_end - 0.5 * h)) continue;
       const int32_t i = offsets_[g] + n.idx;
-      Vec3 target = anchor[n] + handle.offset(t_end);
+      const Vec3 target = handle.target(anchor[n], t_end, carried[k]);
       Vec3 v_new = (target - x_.segment<3>(3 * i)) / h;
       out.push_back({i, v_new - v_.segment<3>(3 * i)});
     }

@@ -1,0 +1,280 @@
+#include "app/table1.hpp"
+
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "app/cli.hpp"
+#include "core/error.hpp"
+#include "scene/scene.hpp"
+
+extern char** environ;
+
+namespace vdc {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kTable1Help =
+    "usage: vdcloth bench table1 [--frames N] [--out DIR] [--threads N] [--scenes DIR] [--scene NAME]...\n"
+    "                            [--mesh-every N]\n"
+    "\n"
+    "Runs karate, solo-dancer and dancers-10 (from DIR/<name>.json) in fixed, adaptive and view\n"
+    "modes, each as a child `vdcloth run` into OUT/<scene>/<mode>/, and writes OUT/table1.md and\n"
+    "OUT/table1.csv (faces, vertices and seconds per frame: min, max, mean; speed-up relative to\n"
+    "adaptive; peak memory) and OUT/table1_<scene>_frames.csv (per frame: faces and seconds of the\n"
+    "adaptive and view runs). Fixed mode runs at the scene's remeshing size_min (or fixed_size).\n"
+    "\n"
+    "options:\n"
+    "  --frames N      frames of every run (default: each scene's `frames`)\n"
+    "  --out DIR       output directory (default: out/table1)\n"
+    "  --threads N     worker threads of each run (default: all cores)\n"
+    "  --scenes DIR    where the scenes are (default: scenes)\n"
+    "  --scene NAME    run only this scene (repeatable; default: all three)\n"
+    "  --mesh-every N  meshes written by each run, as `vdcloth run --mesh-every` (default: 0, none)\n";
+
+struct Table1Args {
+  std::optional<int> frames;
+  std::string out = "out/table1";
+  int threads = 0;
+  std::string scenes = "scenes";
+  std::vector<std::string> only;
+  int mesh_every = 0;
+};
+
+Table1Args parse_table1_args(const std::vector<std::string>& args) {
+  Table1Args r;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
+    };
+    if (a == "--frames") r.frames = parse_positive_int(a, value());
+    else if (a == "--out") r.out = value();
+    else if (a == "--threads") r.threads = parse_positive_int(a, value());
+    else if (a == "--scenes") r.scenes = value();
+    else if (a == "--scene") r.only.push_back(value());
+    else if (a == "--mesh-every") {
+      const std::string& v = value();
+      r.mesh_every = v == "0" ? 0 : parse_positive_int(a, v);
+    } else throw UsageError("unknown option '" + a + "' of bench table1");
+  }
+  if (r.out.empty()) throw UsageError("--out needs a directory");
+  return r;
+}
+
+struct Run {
+  std::string scene, mode;
+  int status = 0;          // exit status of the child
+  long peak_kib = 0;       // its peak resident memory
+  double wall_seconds = 0;
+  RunTable table;
+};
+
+// Runs argv as a child process; returns its exit status (128 + signal if killed) and peak memory.
+int run_child(const std::vector<std::string>& argv, long& peak_kib) {
+  std::vector<char*> cargs;
+  for (const auto& a : argv) cargs.push_back(const_cast<char*>(a.c_str()));
+  cargs.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, cargs.data(), environ) != 0)
+    throw InputError("/proc/self/exe", "", "cannot start a child run");
+  int status = 0;
+  rusage usage{};
+  while (wait4(pid, &status, 0, &usage) < 0)
+    if (errno != EINTR) throw InputError("/proc/self/exe", "", "lost a child run");
+  peak_kib = usage.ru_maxrss;
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string fixed_cell(double x, int digits) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << x;
+  return o.str();
+}
+
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d", std::gmtime(&now));
+  return buf;
+}
+
+const Run* find_run(const std::vector<Run>& runs, const std::string& scene, const std::string& mode) {
+  for (const Run& r : runs)
+    if (r.scene == scene && r.mode == mode) return &r;
+  return nullptr;
+}
+
+void write_tables(const std::vector<Run>& runs, const Table1Args& args, int threads) {
+  std::ofstream csv(args.out + "/table1.csv");
+  csv << "scene,mode,status,frames,faces_min,faces_max,faces_mean,vertices_min,vertices_max,vertices_mean,"
+         "seconds_min,seconds_max,seconds_mean,speedup_vs_adaptive,speedup_vs_fixed,peak_memory_mib\n";
+  std::ofstream md(args.out + "/table1.md");
+  md << "# Table 1 on vdcloth's scenes\n\n"
+     << today() << ", " << threads << " thread(s) a run, " << std::thread::hardware_concurrency() << " cores. "
+     << "Speed-ups are mean seconds per frame relative to the scene's adaptive and fixed runs.\n\n"
+     << "| scene | mode | frames | faces min / max / mean | vertices min / max / mean | s/frame min / max / mean | "
+        "vs adaptive | vs fixed | peak memory |\n"
+     << "| --- | --- | ---: | --- | --- | --- | ---: | ---: | ---: |\n";
+  for (const Run& r : runs) {
+    const RunTable& t = r.table;
+    const Run* adaptive = find_run(runs, r.scene, "adaptive");
+    const Run* fixed = find_run(runs, r.scene, "fixed");
+    auto speedup = [&](const Run* base) {
+      return base && base->table.frames > 0 && t.seconds_mean > 0 ? base->table.seconds_mean / t.seconds_mean : 0.0;
+    };
+    const std::string status = r.status == 0 ? "done" : "failed (exit " + std::to_string(r.status) + ")";
+    csv << r.scene << "," << r.mode << "," << (r.status == 0 ? "done" : "failed") << "," << t.frames << "," << t.faces_min << ","
+        << t.faces_max << "," << fixed_cell(t.faces_mean, 1) << "," << t.vertices_min << "," << t.vertices_max << ","
+        << fixed_cell(t.vertices_mean, 1) << "," << fixed_cell(t.seconds_min, 4) << "," << fixed_cell(t.seconds_max, 4) << ","
+        << fixed_cell(t.seconds_mean, 4) << "," << fixed_cell(speedup(adaptive), 2) << "," << fixed_cell(speedup(fixed), 2) << ","
+        << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << "\n";
+    md << "| " << r.scene << " | " << r.mode << (r.status == 0 ? "" : " (" + status + ")") << " | " << t.frames << " | "
+       << t.faces_min << " / " << t.faces_max << " / " << fixed_cell(t.faces_mean, 0) << " | " << t.vertices_min << " / "
+       << t.vertices_max << " / " << fixed_cell(t.vertices_mean, 0) << " | " << fixed_cell(t.seconds_min, 3) << " / "
+       << fixed_cell(t.seconds_max, 3) << " / " << fixed_cell(t.seconds_mean, 3) << " | " << fixed_cell(speedup(adaptive), 2)
+       << "x | " << fixed_cell(speedup(fixed), 2) << "x | " << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << " MiB |\n";
+  }
+  // Per frame, adaptive against view (the data of the seed paper's Figure 5).
+  std::vector<std::string> scenes;
+  for (const Run& r : runs)
+    if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);
+  for (const std::string& scene : scenes) {
+    const Run* a = find_run(runs, scene, "adaptive");
+    const Run* v = find_run(runs, scene, "view");
+    if (!a || !v) continue;
+    std::ofstream f(args.out + "/table1_" + scene + "_frames.csv");
+    f << "frame,adaptive_faces,adaptive_seconds,view_faces,view_seconds\n";
+    const std::size_t n = std::max(a->table.faces.size(), v->table.faces.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      f << i + 1;
+      for (const Run* r : {a, v}) {
+        if (i < r->table.faces.size()) f << "," << r->table.faces[i] << "," << fixed_cell(r->table.seconds[i], 6);
+        else f << ",,";
+      }
+      f << "\n";
+    }
+  }
+  if (!csv || !md) throw InputError(args.out + "/table1.md", "", "cannot write");
+}
+
+}  // namespace
+
+RunTable read_run_table(const std::string& stats_csv) {
+  std::ifstream in(stats_csv);
+  if (!in) throw InputError(stats_csv, "", "cannot read");
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("frame,faces,vertices,seconds", 0) != 0)
+    throw InputError(stats_csv, "line 1", "expected the header frame,faces,vertices,seconds,...");
+  RunTable t;
+  double faces_sum = 0, vertices_sum = 0, seconds_sum = 0;
+  int line_no = 1;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.empty()) continue;
+    std::istringstream row(line);
+    std::string cell[4];
+    for (auto& c : cell)
+      if (!std::getline(row, c, ',')) throw InputError(stats_csv, "line " + std::to_string(line_no), "fewer than four columns");
+    int faces = 0, vertices = 0;
+    double seconds = 0;
+    try {
+      faces = std::stoi(cell[1]);
+      vertices = std::stoi(cell[2]);
+      seconds = std::stod(cell[3]);
+    } catch (const std::exception&) {
+      throw InputError(stats_csv, "line " + std::to_string(line_no), "not a number in the first four columns");
+    }
+    if (t.frames == 0) {
+      t.faces_min = t.faces_max = faces;
+      t.vertices_min = t.vertices_max = vertices;
+      t.seconds_min = t.seconds_max = seconds;
+    }
+    ++t.frames;
+    t.faces_min = std::min(t.faces_min, faces);
+    t.faces_max = std::max(t.faces_max, faces);
+    t.vertices_min = std::min(t.vertices_min, vertices);
+    t.vertices_max = std::max(t.vertices_max, vertices);
+    t.seconds_min = std::min(t.seconds_min, seconds);
+    t.seconds_max = std::max(t.seconds_max, seconds);
+    faces_sum += faces;
+    vertices_sum += vertices;
+    seconds_sum += seconds;
+    t.faces.push_back(faces);
+    t.seconds.push_back(seconds);
+  }
+  if (t.frames > 0) {
+    t.faces_mean = faces_sum / t.frames;
+    t.vertices_mean = vertices_sum / t.frames;
+    t.seconds_mean = seconds_sum / t.frames;
+  }
+  return t;
+}
+
+int table1_command(const std::vector<std::string>& argv, std::ostream& out, std::ostream& err) {
+  for (const auto& a : argv)
+    if (a == "--help" || a == "-h") {
+      out << kTable1Help;
+      return kExitOk;
+    }
+  const Table1Args args = parse_table1_args(argv);
+  const std::vector<std::string> all{"karate", "solo-dancer", "dancers-10"};
+  for (const auto& name : args.only)
+    if (std::find(all.begin(), all.end(), name) == all.end())
+      throw UsageError("--scene expects karate, solo-dancer or dancers-10, got '" + name + "'");
+  std::vector<std::string> scenes;
+  for (const auto& name : all)
+    if (args.only.empty() || std::find(args.only.begin(), args.only.end(), name) != args.only.end()) scenes.push_back(name);
+  // Every scene is read (and checked) before the first run starts.
+  for (const auto& name : scenes) {
+    const std::string path = args.scenes + "/" + name + ".json";
+    if (!fs::is_regular_file(path)) throw InputError(path, "", "scene not found (use --scenes DIR)");
+    const Scene scene = load_scene(path);
+    if (!scene.camera) throw InputError(path, "camera", "table1 needs a camera for its view-dependent runs");
+  }
+  const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  std::error_code ec;
+  fs::create_directories(args.out, ec);
+  if (ec) throw InputError(args.out, "", "cannot create output directory: " + ec.message());
+
+  std::vector<Run> runs;
+  for (const auto& name : scenes)
+    for (const std::string mode : {"fixed", "adaptive", "view"}) {
+      Run r;
+      r.scene = name;
+      r.mode = mode;
+      const std::string dir = args.out + "/" + name + "/" + mode;
+      std::vector<std::string> child{"vdcloth", "run", args.scenes + "/" + name + ".json", "--mode", mode, "--out", dir,
+                                     "--threads", std::to_string(threads), "--mesh-every", std::to_string(args.mesh_every)};
+      if (args.frames) {
+        child.push_back("--frames");
+        child.push_back(std::to_string(*args.frames));
+      }
+      out << "vdcloth bench table1: " << name << ", " << mode << " mode" << std::endl;
+      const auto t0 = std::chrono::steady_clock::now();
+      r.status = run_child(child, r.peak_kib);
+      r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (fs::is_regular_file(dir + "/stats.csv")) r.table = read_run_table(dir + "/stats.csv");
+      if (r.status != 0) err << "vdcloth bench table1: " << name << " in " << mode << " mode failed (exit " << r.status << ")" << std::endl;
+      runs.push_back(std::move(r));
+      write_tables(runs, args, threads);  // the table so far, in case the session ends early
+    }
+  out << "vdcloth bench table1: " << args.out << "/table1.md" << std::endl;
+  return std::all_of(runs.begin(), runs.end(), [](const Run& r) { return r.status == 0; }) ? kExitOk : kExitSimulationFailed;
+}
+
+}  // namespace vdc
