@@ -1,7 +1,5 @@
 // Collision handling: continuous detection plus impact zones (Bridson et al. 2002, section 7.4;
 // Harmon et al. 2008, section 4), iterated until no impact is left.
-#include <cstdio>
-#include <cstdlib>
 #include "collision/collider.hpp"
 
 #include <algorithm>
@@ -323,8 +321,6 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const auto it = carried.find(root);
       const Vec3 d = it == carried.end() ? Vec3::Zero() : Vec3(it->second.first / it->second.second);
       for (int32_t n : nodes) x_end.segment<3>(3 * n) = x_start.segment<3>(3 * n) + d;
-      if (std::getenv("VDC_DEBUG_ZONES")) { Vec3 c = Vec3::Zero(); for (int32_t n : nodes) c += x_start.segment<3>(3 * n); c /= nodes.size();
-        std::fprintf(stderr, "zone %zu nodes at %.3f %.3f %.3f carried %d first node %d\n", nodes.size(), c.x(), c.y(), c.z(), it != carried.end(), nodes[0]); }
       ++stats.fallbacks;
     }
   }
