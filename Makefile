@@ -1,7 +1,10 @@
 # vdcloth: the two commands are `make run` and `make test` (see README.md).
 JOBS ?= $(shell nproc)
-SCENE ?= scenes/sheet-hang.json
-OUT ?= out/sheet-hang
+# The main job: the solo dancer through the camera's view, first 120 frames (4.8 s of the shot).
+SCENE ?= scenes/solo-dancer.json
+MODE ?= view
+FRAMES ?= 120
+OUT ?= out/solo-dancer
 
 .PHONY: all deps configure build build-asan run test bench clean
 
@@ -26,7 +29,7 @@ build-asan: deps
 
 run: deps configure
 	cmake --build build -j $(JOBS) --target vdcloth
-	build/vdcloth run $(SCENE) --out $(OUT)
+	build/vdcloth run $(SCENE) --mode $(MODE) --frames $(FRAMES) --out $(OUT)
 
 test: build build-asan
 	ctest --test-dir build-asan --output-on-failure -j $(JOBS)

@@ -75,15 +75,19 @@ std::vector<std::vector<int32_t>> add_tube(Sewing& sew, const TubeParams& p, con
   // Row i from the bottom; in the pattern, a cone is developed about its apex.
   auto radius = [&](int i) { return p.bottom_radius - flare * i / rows; };
   const bool cone = std::abs(flare) > 1e-9 * slant;
+  // The triangulated tube is a polygonal frustum (or prism), developable exactly: its ring
+  // points lie at their distance from the apex, each face strip turning by the angle the
+  // strip's chord subtends there.
+  const double chord = 2 * p.top_radius * std::sin(M_PI / n);
   const double apex = cone ? p.top_radius * slant / flare : 0;  // apex to the top ring, along the slant (signed)
-  const double sector = cone ? 2 * M_PI * p.top_radius / apex : 0;
+  const double turn = cone ? 2 * std::asin(0.5 * chord / apex) : 0;
   return sew.add_piece(
       rows, n, true,
       [&](int i, int k) { return sewn_top && i == rows ? (*sewn_top)[static_cast<std::size_t>(k)] : -1; },
       [&](int i, int k) { return ring(radius(i), p.bottom_height + drop * i / rows, k); },
       [&](int i, int k) {
-        if (!cone) return Vec2(2 * M_PI * p.top_radius * k / n, slant * i / rows);
-        const double r = apex + slant * (rows - i) / rows, b = sector * k / n;
+        if (!cone) return Vec2(chord * k, slant * i / rows);
+        const double r = apex + slant * (rows - i) / rows, b = turn * k;
         return Vec2(r * std::sin(b), -r * std::cos(b));
       },
       [](const Vec3& x) { return Vec3(x.x(), 0, x.z()); });
@@ -102,7 +106,7 @@ MeshSource make_dress(const DressParams& p) {
   const int n = p.around;
   auto theta = [&](int k) { return M_PI + 2 * M_PI * k / n; };
   auto ring = [&](double r, double y, int k) { return Vec3(r * std::sin(theta(k)), y, r * std::cos(theta(k))); };
-  const double column = 2 * M_PI * p.bodice_radius / n;  // material width of a column
+  const double column = 2 * p.bodice_radius * std::sin(M_PI / n);  // material width of a column (the ring's chord)
 
   // Bodice: a cylinder from the waist up to the top edge; skirt: a cone from the waist (sewn to
   // the bodice) down to the hem.

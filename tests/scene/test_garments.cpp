@@ -71,3 +71,38 @@ TEST(Garments, DressIsSewnClosedAndClearOfTheBody) {
 
 }  // namespace
 }  // namespace vdc
+
+namespace vdc {
+namespace {
+
+// A tube's pattern is its exact development: every face has the same edge lengths in material
+// space as in the world, for a cone flaring down, a cone narrowing down and a cylinder.
+TEST(Garments, TubePatternIsTheDevelopedTube) {
+  for (const auto& [top_radius, bottom_radius] : {std::pair{0.2, 0.36}, std::pair{0.3, 0.2}, std::pair{0.23, 0.23}}) {
+    TubeParams p;
+    p.top_height = 1.0;
+    p.top_radius = top_radius;
+    p.bottom_height = 0.3;
+    p.bottom_radius = bottom_radius;
+    const Mesh tube = build_mesh(make_tube(p));
+    ASSERT_TRUE(tube.validate().ok());
+    double worst = 0;
+    for (FaceId f : tube.faces())
+      for (int i = 0; i < 3; ++i) {
+        const double world = (tube.x(tube.face_node(f, i)) - tube.x(tube.face_node(f, (i + 1) % 3))).norm();
+        const double material = (tube.u(tube.face_vert(f, i)) - tube.u(tube.face_vert(f, (i + 1) % 3))).norm();
+        worst = std::max(worst, std::abs(world - material));
+      }
+    EXPECT_LT(worst, 1e-12) << top_radius << " to " << bottom_radius;
+    // Two open rings and one back seam.
+    int boundary = 0, seam_nodes = 0;
+    for (EdgeId e : tube.edges()) boundary += tube.is_boundary(e);
+    for (NodeId v : tube.nodes()) seam_nodes += tube.node_verts(v).size() > 1;
+    const int rows = static_cast<int>(std::round(std::hypot(0.7, bottom_radius - top_radius) / p.cell));
+    EXPECT_EQ(boundary, 2 * p.around);
+    EXPECT_EQ(seam_nodes, rows + 1);
+  }
+}
+
+}  // namespace
+}  // namespace vdc
