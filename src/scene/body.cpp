@@ -75,7 +75,11 @@ Pose Body::rest_pose(const Skeleton& s) {
   return p;
 }
 
-Body::Body(const Motion& motion, const BodyParams& params) : motion_(motion) {
+Body::Body(const Motion& motion, const BodyParams& params) : Body(motion, params, nullptr) {}
+
+Body::Body(const Motion& motion, const BodyParams& params, MeshSource skin) : Body(motion, params, &skin) {}
+
+Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin) : motion_(motion) {
   const auto& joints = motion.skeleton.joints;
   const std::vector<Eigen::Isometry3d> rest = motion.world(rest_pose(motion.skeleton));
   std::vector<Bone> bones;
@@ -96,7 +100,11 @@ Body::Body(const Motion& motion, const BodyParams& params) : motion_(motion) {
     for (const Bone& b : bones) d = smooth_min(d, capsule(b, p), params.blend);
     return d;
   };
-  rest_ = polygonize(field, box, params.resolution);
+  if (skin) {
+    rest_ = std::move(*skin);
+  } else {
+    rest_ = polygonize(field, box, params.resolution);
+  }
   with_canonical_uvs(rest_);
 
   // Skinning weights: each vertex follows the bones nearest to it (within the blend of the

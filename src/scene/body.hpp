@@ -18,9 +18,12 @@ struct BodyParams {
 
 class Body {
  public:
-  // `rest`: the skeleton's joint transforms in the rest pose (all rotations zero, offsets as
-  // given); lengths in metres.
+  // The procedural body of the motion's skeleton in its rest pose (all rotations zero, offsets
+  // as given); lengths in metres.
   Body(const Motion& motion, const BodyParams& params);
+  // A given skin (a mesh of the figure in the skeleton's rest pose, same units) skinned to the
+  // skeleton with the same automatic weights; params.build and params.blend shape the weights.
+  Body(const Motion& motion, const BodyParams& params, MeshSource skin);
   const MeshSource& rest_mesh() const { return rest_; }
   // Vertex positions for a pose; at the rest pose, exactly the rest mesh.
   std::vector<Vec3> skin(const Pose& pose) const;
@@ -34,6 +37,7 @@ class Body {
     Vec3 local;       // the vertex in that joint's rest frame
     Vec3 rest_world;  // that joint's rest transform applied to `local`
   };
+  Body(const Motion& motion, const BodyParams& params, MeshSource* skin);
   const Motion& motion_;
   MeshSource rest_;
   std::vector<std::vector<Influence>> influences_;  // per vertex

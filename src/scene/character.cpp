@@ -3,9 +3,10 @@
 
 namespace vdc {
 
-Character::Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed)
+Character::Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed,
+                     std::optional<MeshSource> skin)
     : motion_(std::make_unique<Motion>(std::move(motion))), placement_(placement) {
-  body_ = std::make_unique<Body>(*motion_, body);
+  body_ = skin ? std::make_unique<Body>(*motion_, body, std::move(*skin)) : std::make_unique<Body>(*motion_, body);
   clip_ = MotionClip{motion_.get(), start, speed};
 }
 

@@ -3,6 +3,7 @@
 // time at a speed. Its vertices move with the skin, so collisions see per-vertex velocities.
 #pragma once
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "scene/body.hpp"
@@ -12,7 +13,10 @@ namespace vdc {
 
 class Character {
  public:
-  Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed);
+  // With `skin`, that mesh (in the skeleton's rest pose and units) is the body instead of the
+  // procedural one.
+  Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed,
+            std::optional<MeshSource> skin = std::nullopt);
   const MeshSource& rest_mesh() const { return body_->rest_mesh(); }  // unplaced, rest pose
   // Placed, skinned vertex positions at scene time t (by mesh node index).
   std::vector<Vec3> positions_at(double t) const;

@@ -226,19 +226,29 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
   if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
   if (auto c = j.find("character")) {
     // The character places itself (its transform applies to the skinned body every frame).
-    c->only_keys({"motion", "scale", "build", "resolution", "start", "speed"});
+    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed"});
     const JsonValue file = c->at("motion");
     const std::string path = resolve(file, scene_path);
     Motion motion = with_key(file, [&] { return read_bvh(path); });
     if (motion.frames.empty()) file.fail("the motion has no frames");
-    scale_lengths(motion, c->positive_or("scale", 1.0));
+    const double scale = c->positive_or("scale", 1.0);
+    scale_lengths(motion, scale);
+    std::optional<MeshSource> skin;
+    if (auto s = c->find("skin")) {
+      const std::string skin_path = resolve(*s, scene_path);
+      skin = with_key(*s, [&] {
+        read_obj(skin_path, false);  // checked as any obstacle mesh: manifold, consistently oriented
+        return read_obj_source(skin_path, false);
+      });
+      for (Vec3& x : skin->positions) x *= scale;
+    }
     BodyParams body;
     body.build = c->positive_or("build", body.build);
     body.resolution = c->positive_or("resolution", body.resolution);
     if (body.resolution < 0.005) c->at("resolution").fail("must be at least 0.005 m");
     const double start = c->number_or("start", 0.0), speed = c->positive_or("speed", 1.0);
     const Transform placement = j.has("transform") ? parse_transform(j.at("transform")) : Transform{};
-    o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed);
+    o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed, std::move(skin));
     o.mesh = build_mesh(o.character->rest_mesh());
     const std::vector<Vec3> x0 = o.character->positions_at(0.0);
     for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x0[static_cast<std::size_t>(n.idx)];

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -13,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/cli.hpp"
+#include "app/table1.hpp"
+#include "core/error.hpp"
 
 namespace vdc {
 namespace {
@@ -106,6 +109,27 @@ TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
        {"body.02.obj", "face 2", "other vertices"}},
       {"view mode without a camera", [&] { return scene(); }, {"--mode", "view"}, {"scene.json", "camera", "--mode view needs a camera"}},
       {"missing scene", [&] { return (dir_ / "nothing.json").string(); }, {}, {"nothing.json", "cannot open"}},
+      {"obstacle of a group without garments",
+       [&] { return scene("", R"("obstacles": [{"name": "b", "group": "x", "mesh": {"sphere": {"radius": 0.1}}}], )"); },
+       {},
+       {"obstacles[0].group", "no garment is in group 'x'"}},
+      {"handle attached to a missing obstacle",
+       [&] { return scene(R"(, "handles": [{"uv": [[0, 1]], "attach": {"obstacle": "nobody", "joint": "Hips"}}])"); },
+       {},
+       {"garments[0].handles[0].attach.obstacle", "no obstacle named 'nobody'"}},
+      {"handle attached to an obstacle that is not a character",
+       [&] {
+         return scene(R"(, "handles": [{"uv": [[0, 1]], "attach": {"obstacle": "b", "joint": "Hips"}}])",
+                      R"("obstacles": [{"name": "b", "mesh": {"sphere": {"radius": 0.1}}}], )");
+       },
+       {},
+       {"attach.obstacle", "'b' is not a character"}},
+      {"handle box with no node", [&] { return scene(R"(, "handles": [{"box": [[5, 5, 5], [6, 6, 6]]}])"); }, {}, {"handles[0].box", "no node"}},
+      {"tube upside down", [&] { return scene("", "", "\"cotton.json\"", R"({"tube": {"top": [0.3, 0.2], "bottom": [1.0, 0.3]}})"); }, {},
+       {"garments[0].mesh.tube.bottom", "below the top ring"}},
+      {"dress too narrow", [&] { return scene("", "", "\"cotton.json\"", R"({"dress": {"bodice_radius": 0.1}})"); }, {},
+       {"bodice_radius", "between 0.16 and 0.3"}},
+      {"mesh-every not a number", [&] { return scene(); }, {"--mesh-every", "x"}, {"--mesh-every", "'x'"}},
   };
   for (const Row& row : rows) {
     std::string path = row.make_scene();
@@ -144,6 +168,90 @@ TEST_F(CliTest, ShortRunWritesFramesStatsAndSummary) {
   EXPECT_EQ(summary["status"], "done");
   EXPECT_EQ(summary["frames"], 3);
   EXPECT_EQ(summary["mode"], "fixed");
+}
+
+TEST_F(CliTest, RunWritesMeshesEveryNthFrameOnly) {
+  ASSERT_EQ(run({"run", scene(), "--out", out_dir(), "--frames", "4", "--threads", "1", "--mesh-every", "2"}), kExitOk) << err_.str();
+  for (int f = 0; f <= 4; ++f)
+    EXPECT_EQ(fs::exists(dir_ / "out" / "frames" / ("cloth_s.000" + std::to_string(f) + ".obj")), f % 2 == 0) << f;
+  ASSERT_EQ(run({"run", scene(), "--out", out_dir(), "--frames", "2", "--threads", "1", "--mesh-every", "0"}), kExitOk) << err_.str();
+  EXPECT_TRUE(fs::is_empty(dir_ / "out" / "frames"));
+}
+
+TEST_F(CliTest, Table1ReadsARunsStatistics) {
+  const std::string csv = write("stats.csv", "frame,faces,vertices,seconds,substeps\n1,100,60,0.5,8\n2,300,170,1.5,8\n3,200,120,1.0,8\n");
+  const RunTable t = read_run_table(csv);
+  EXPECT_EQ(t.frames, 3);
+  EXPECT_EQ(t.faces_min, 100);
+  EXPECT_EQ(t.faces_max, 300);
+  EXPECT_DOUBLE_EQ(t.faces_mean, 200);
+  EXPECT_EQ(t.vertices_min, 60);
+  EXPECT_EQ(t.vertices_max, 170);
+  EXPECT_DOUBLE_EQ(t.vertices_mean, 350.0 / 3);
+  EXPECT_DOUBLE_EQ(t.seconds_min, 0.5);
+  EXPECT_DOUBLE_EQ(t.seconds_max, 1.5);
+  EXPECT_DOUBLE_EQ(t.seconds_mean, 1.0);
+  EXPECT_THROW(read_run_table(write("bad.csv", "frame,faces,vertices,seconds\n1,x,3,0.5\n")), InputError);
+  EXPECT_THROW(read_run_table(write("other.csv", "a,b\n")), InputError);
+}
+
+TEST_F(CliTest, Table1UsageErrors) {
+  EXPECT_EQ(run({"bench"}), kExitBadInput);
+  EXPECT_EQ(run({"bench", "table2"}), kExitBadInput);
+  EXPECT_EQ(run({"bench", "table1", "--scene", "judo"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("judo"), std::string::npos);
+  EXPECT_EQ(run({"bench", "table1", "--scenes", (dir_ / "none").string(), "--out", out_dir()}), kExitBadInput);
+  EXPECT_NE(err_.str().find("scene not found"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(out_dir()));
+  EXPECT_EQ(run({"bench", "table1", "--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("table1.md"), std::string::npos);
+}
+
+// The whole command on three tiny stand-in scenes (one of them with two groups), through the
+// real executable: nine child runs of two frames, and the tables they make.
+TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
+  fs::create_directories(dir_ / "scenes");
+  const std::string camera = R"("camera": {"fov": 40, "width": 320, "height": 240, "keys": [{"time": 0, "position": [0.5, 2, 1], "target": [0.5, 0, -0.5]}]}, )";
+  const std::string garment = R"({"name": "NAME", GROUP "mesh": {"grid": {"size": [1, 1], "cells": [4, 4]}}, "material": "../cotton.json"})";
+  auto sheet = [&](const std::string& name, const std::string& group) {
+    std::string g = garment;
+    g.replace(g.find("NAME"), 4, name);
+    g.replace(g.find("GROUP"), 5, group.empty() ? "" : "\"group\": \"" + group + "\",");
+    return g;
+  };
+  for (const std::string name : {"karate", "solo-dancer"})
+    write("scenes/" + name + ".json", R"({"substeps": 2, "remeshing": {"size": [0.2, 0.5]}, )" + camera + R"("garments": [)" + sheet("s", "") + "]}");
+  write("scenes/dancers-10.json", R"({"substeps": 2, "remeshing": {"size": [0.2, 0.5]}, )" + camera + R"("garments": [)" + sheet("a", "one") + ", " +
+                                      sheet("b", "two") + "]}");
+  const std::string out = (dir_ / "table").string();
+  const std::string command = std::string(VDCLOTH_BINARY) + " bench table1 --scenes " + (dir_ / "scenes").string() + " --frames 2 --threads 1 --out " +
+                              out + " > " + (dir_ / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << std::ifstream(dir_ / "log.txt").rdbuf();
+  std::ifstream csv(out + "/table1.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line.rfind("scene,mode,status,frames,faces_min", 0), 0u);
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::istringstream row(line);
+    std::vector<std::string> cells;
+    for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
+    ASSERT_EQ(cells.size(), 16u) << line;
+    EXPECT_EQ(cells[2], "done") << line;
+    EXPECT_EQ(cells[3], "2") << line;
+    if (cells[1] == "adaptive") EXPECT_EQ(cells[13], "1.00") << line;
+    if (cells[0] == "dancers-10") EXPECT_EQ(std::stoi(cells[4]) % 2, 0) << "two identical sheets: " << line;
+  }
+  EXPECT_EQ(rows, 9);
+  EXPECT_TRUE(fs::exists(out + "/table1.md"));
+  for (const std::string name : {"karate", "solo-dancer", "dancers-10"}) {
+    std::ifstream frames(out + "/table1_" + name + "_frames.csv");
+    int n = 0;
+    for (std::string l; std::getline(frames, l);) ++n;
+    EXPECT_EQ(n, 3) << name;  // header and two frames
+    EXPECT_TRUE(fs::exists(out + "/" + name + "/view/stats.csv")) << name;
+  }
 }
 
 }  // namespace

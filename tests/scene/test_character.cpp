@@ -4,8 +4,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "io/bvh_motion.hpp"
+#include "io/obj.hpp"
 #include "scene/scene.hpp"
 
 namespace vdc {
@@ -59,6 +62,53 @@ TEST(Character, AnObstacleIsAMeshOrACharacter) {
     EXPECT_NE(std::string(e.what()).find("obstacles[0].character.motion"), std::string::npos) << e.what();
   }
   fs::remove_all(fs::path(missing).parent_path());
+}
+
+// A skin from a file: the procedural body written to OBJ and given back as the character's
+// `skin` moves exactly as the procedural character (same mesh, same automatic weights), and the
+// skin is scaled with the motion.
+TEST(Character, SkinFromAFileIsSkinnedLikeTheProceduralBody) {
+  const std::string motion = std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh";
+  Scene procedural = load_scene(write_scene(R"({"name": "d", "character": {"motion": ")" + motion + R"(", "resolution": 0.05}})"));
+  const fs::path dir = fs::path(procedural.path).parent_path();
+  ASSERT_TRUE(write_obj(procedural.obstacles[0].mesh, (dir / "skin.obj").string()));
+  // Written at the rest pose (time 0): the file is the rest mesh. A skin and a motion both in
+  // units of half a metre come back to the same body with scale 0.5.
+  std::ofstream(dir / "half.obj") << [&] {
+    std::ifstream in(dir / "skin.obj");
+    std::string line, out;
+    while (std::getline(in, line)) {
+      if (line.rfind("v ", 0) == 0) {
+        std::istringstream v(line.substr(2));
+        double x, y, z;
+        v >> x >> y >> z;
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "v %.17g %.17g %.17g", 2 * x, 2 * y, 2 * z);
+        line = buf;
+      }
+      out += line + "\n";
+    }
+    return out;
+  }();
+  Scene from_file = load_scene(write_scene(R"({"name": "d", "character": {"motion": ")" + motion + R"(", "skin": "skin.obj"}})"));
+  Motion doubled = read_bvh(motion);
+  scale_lengths(doubled, 2.0);
+  write_bvh(doubled, (dir / "double.bvh").string());
+  Scene halved = load_scene(write_scene(R"({"name": "d", "character": {"motion": "double.bvh", "skin": "half.obj", "scale": 0.5}})"));
+  fs::remove_all(dir);
+  for (double t : {0.0, 1.3, 4.0}) {
+    const std::vector<Vec3> a = procedural.obstacles[0].positions_at(t), b = from_file.obstacles[0].positions_at(t),
+                            c = halved.obstacles[0].positions_at(t);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_EQ(a.size(), c.size());
+    double worst = 0, worst_halved = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      worst = std::max(worst, (a[i] - b[i]).norm());
+      worst_halved = std::max(worst_halved, (a[i] - c[i]).norm());
+    }
+    EXPECT_EQ(worst, 0.0) << t;
+    EXPECT_LT(worst_halved, 1e-12) << t;
+  }
 }
 
 }  // namespace
