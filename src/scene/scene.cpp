@@ -457,28 +457,19 @@ Scene load_scene(const std::string& path) {
 }
 
 std::vector<Scene> split_groups(Scene scene) {
+  std::vector<GarmentSpec> garments = std::move(scene.garments);
+  std::vector<ObstacleSpec> obstacles = std::move(scene.obstacles);
+  scene.garments.clear();
+  scene.obstacles.clear();  // `scene` now holds the settings every part shares
   std::vector<std::string> groups;
-  for (const auto& g : scene.garments)
+  for (const auto& g : garments)
     if (std::find(groups.begin(), groups.end(), g.group) == groups.end()) groups.push_back(g.group);
   std::vector<Scene> parts;
   for (const std::string& group : groups) {
-    Scene part;
-    part.path = scene.path;
-    part.name = scene.name;
-    part.frame_time = scene.frame_time;
-    part.frames = scene.frames;
-    part.substeps = scene.substeps;
-    part.gravity = scene.gravity;
-    part.air = scene.air;
-    part.solver = scene.solver;
-    part.remeshing = scene.remeshing;
-    part.collision = scene.collision;
-    part.fixed_size = scene.fixed_size;
-    part.camera = scene.camera;
-    part.view = scene.view;
-    for (auto& g : scene.garments)
+    Scene part = scene;
+    for (auto& g : garments)
       if (g.group == group) part.garments.push_back(std::move(g));
-    for (const auto& o : scene.obstacles)
+    for (const auto& o : obstacles)
       if (o.group == group || o.group.empty()) part.obstacles.push_back(o);
     parts.push_back(std::move(part));
   }

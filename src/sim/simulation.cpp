@@ -60,11 +60,26 @@ void Simulation::remesh_garments(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<std::vector<Vec3>> obstacle_x;
   for (const auto& o : scene_.obstacles) obstacle_x.push_back(o.positions_at(time()));
-  for (auto& g : scene_.garments) {
-    std::vector<Vec3> points(static_cast<std::size_t>(g.mesh.node_capacity()), Vec3::Zero());
-    for (NodeId n : g.mesh.nodes()) points[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
-    const std::vector<ObstaclePlane> planes =
-        nearest_obstacle_planes(points, obstacle_meshes_, obstacle_x, scene_.remeshing.size_max);
+  // For the proximity criterion the other garments are obstacles too: a layer's chords must not
+  // sag through the layer beside it any more than through the body.
+  std::vector<CollisionMesh> garment_meshes;
+  std::vector<std::vector<Vec3>> garment_x;
+  for (const auto& g : scene_.garments) {
+    garment_meshes.push_back(collision_mesh(g.mesh));
+    std::vector<Vec3> x(static_cast<std::size_t>(g.mesh.node_capacity()), Vec3::Zero());
+    for (NodeId n : g.mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
+    garment_x.push_back(std::move(x));
+  }
+  for (std::size_t gi = 0; gi < scene_.garments.size(); ++gi) {
+    auto& g = scene_.garments[gi];
+    std::vector<CollisionMesh> near_meshes = obstacle_meshes_;
+    std::vector<std::vector<Vec3>> near_x = obstacle_x;
+    for (std::size_t other = 0; other < scene_.garments.size(); ++other)
+      if (other != gi) {
+        near_meshes.push_back(garment_meshes[other]);
+        near_x.push_back(garment_x[other]);
+      }
+    const std::vector<ObstaclePlane> planes = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max);
     if (options_.mode == SimMode::View) {
       auto tv = std::chrono::steady_clock::now();
       ViewSizing view(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
