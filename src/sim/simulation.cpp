@@ -230,10 +230,9 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats, doubl
   if (r.ok) {
     // Impact zones that do not separate: first retry the step in halves (smaller motions meet
     // fewer impacts at once); at the last level the zones keep their start positions.
-    const bool may_halve = !zones_stuck_ && depth < kCollisionHalvings && depth < scene_.solver.max_step_halvings;
+    const bool may_halve = depth < kCollisionHalvings && depth < scene_.solver.max_step_halvings;
     const int fallbacks = resolve_collisions(x_start, h, fixed, obstacles, stats, !may_halve);
     if (fallbacks == 0 || !may_halve) {
-      zones_stuck_ = fallbacks > 0;
       ++stats.substeps;
       return;
     }

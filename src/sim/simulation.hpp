@@ -94,9 +94,7 @@ class Simulation {
                          FrameStats& stats, bool last_resort);
   // Halvings a step may take to let impact zones separate before the zones are frozen.
   static constexpr int kCollisionHalvings = 2;
-  // The last step left impact zones unseparated: the next goes to the last resort at once, since
-  // halving rarely frees a zone stuck for a whole step (a pinch) and costs 7 attempts a step.
-  bool zones_stuck_ = false;
+
 
   Scene scene_;
   SimOptions options_;
