@@ -201,21 +201,21 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats, doubl
   const std::vector<ContactTerm> contacts = proximity_contacts(fixed, obstacles, h, stats);
   const Eigen::VectorXd x_start = x_, v_start = v_;
   const double limit = scene_.solver.max_velocity_change;
-  StepReport r = integrator_->step(x_, v_, held, p, limit, contacts);
-  stats.assemble_seconds += r.assemble_seconds;
-  stats.solve_seconds += r.solve_seconds;
-  stats.solver_iterations += r.solver_iterations;
-  stats.factorizations += r.factorizations;
+  auto solve = [&](VelocityLimit mode) {
+    const StepReport report = integrator_->step(x_, v_, held, p, limit, contacts, mode);
+    stats.assemble_seconds += report.assemble_seconds;
+    stats.solve_seconds += report.solve_seconds;
+    stats.solver_iterations += report.solver_iterations;
+    stats.factorizations += report.factorizations;
+    return report;
+  };
+  StepReport r = solve(VelocityLimit::Refuse);
   // A velocity change that does not shrink with the step (the contact penalty pushing a deep
   // penetration out asks for a fixed displacement, so a velocity growing as 1/h) or that remains
   // at the smallest step: clamp it to the limit rather than end the run.
   if (!r.ok && std::isfinite(r.max_dv) && r.max_dv > limit &&
       (depth >= scene_.solver.max_step_halvings || (refused_dv > 0 && r.max_dv >= refused_dv))) {
-    const StepReport c = integrator_->step(x_, v_, held, p, limit, contacts, VelocityLimit::Clamp);
-    stats.assemble_seconds += c.assemble_seconds;
-    stats.solve_seconds += c.solve_seconds;
-    stats.solver_iterations += c.solver_iterations;
-    stats.factorizations += c.factorizations;
+    const StepReport c = solve(VelocityLimit::Clamp);
     if (c.ok) {
       ++stats.velocity_clamps;
       if (log_) {
