@@ -240,8 +240,12 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
     ASSERT_EQ(cells.size(), 16u) << line;
     EXPECT_EQ(cells[2], "done") << line;
     EXPECT_EQ(cells[3], "2") << line;
-    if (cells[1] == "adaptive") EXPECT_EQ(cells[13], "1.00") << line;
-    if (cells[0] == "dancers-10") EXPECT_EQ(std::stoi(cells[4]) % 2, 0) << "two identical sheets: " << line;
+    if (cells[1] == "adaptive") {
+      EXPECT_EQ(cells[13], "1.00") << line;
+    }
+    if (cells[0] == "dancers-10") {
+      EXPECT_EQ(std::stoi(cells[4]) % 2, 0) << "two identical sheets: " << line;
+    }
   }
   EXPECT_EQ(rows, 9);
   EXPECT_TRUE(fs::exists(out + "/table1.md"));

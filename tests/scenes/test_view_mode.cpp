@@ -16,8 +16,8 @@ TEST(ViewMode, WithFactorOneAndNoFloorItIsTheAdaptiveRunExactly) {
   neutral.view.v_back = 1;
   neutral.view.v_out = 1;
   neutral.view.l_min = 0;
-  Simulation adaptive(sheet_camera(), SimOptions{SimMode::Adaptive, 2});
-  Simulation view(std::move(neutral), SimOptions{SimMode::View, 2});
+  Simulation adaptive(sheet_camera(), SimOptions{SimMode::Adaptive, 1});
+  Simulation view(std::move(neutral), SimOptions{SimMode::View, 1});
   for (int f = 0; f < 30; ++f) {
     adaptive.step_frame();
     FrameStats s = view.step_frame();
@@ -33,8 +33,8 @@ TEST(ViewMode, WithFactorOneAndNoFloorItIsTheAdaptiveRunExactly) {
 TEST(ViewMode, FacesSeenFromBehindOrOutOfFrameAreCoarsened) {
   // 4.5 s to 5.2 s (frames 113 to 130) the camera sees the sheet's back; the close-up after the
   // cut at 5.2 s leaves part of the sheet out of frame.
-  Simulation adaptive(sheet_camera(), SimOptions{SimMode::Adaptive, 2});
-  Simulation view(sheet_camera(), SimOptions{SimMode::View, 2});
+  Simulation adaptive(sheet_camera(), SimOptions{SimMode::Adaptive, 1});
+  Simulation view(sheet_camera(), SimOptions{SimMode::View, 1});
   int adaptive_faces = 0, view_faces = 0, adaptive_back = 0, view_back = 0, out_of_frame = 0;
   for (int f = 0; f < 140; ++f) {
     const FrameStats a = adaptive.step_frame();
