@@ -126,15 +126,43 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     face_bvh = &cloth_face_tree_.update(face_boxes);
     edge_bvh = &cloth_edge_tree_.update(edge_boxes);
 
+    // After the first round, only pairs with a node that a projection moved can hold a new
+    // impact: primitives with such a node query the whole hierarchies, the others only the small
+    // hierarchies over the moved cloth primitives (and no obstacle, which did not move).
+    const bool first_round = round == 0;
+    auto has_moved = [&](std::initializer_list<int32_t> nodes) {
+      for (int32_t n : nodes)
+        if (moved[static_cast<std::size_t>(n)]) return true;
+      return false;
+    };
+    std::vector<int32_t> moved_faces, moved_edges;  // cloth primitives with a moved node
+    std::vector<Aabb> moved_face_boxes, moved_edge_boxes;
+    if (!first_round) {
+      for (std::size_t f = 0; f < cloth_faces_.size(); ++f)
+        if (has_moved({cloth_faces_[f][0], cloth_faces_[f][1], cloth_faces_[f][2]})) {
+          moved_faces.push_back(static_cast<int32_t>(f));
+          moved_face_boxes.push_back(face_boxes[f]);
+        }
+      for (std::size_t e = 0; e < cloth_edges_.size(); ++e)
+        if (has_moved({cloth_edges_[e][0], cloth_edges_[e][1]})) {
+          moved_edges.push_back(static_cast<int32_t>(e));
+          moved_edge_boxes.push_back(edge_boxes[e]);
+        }
+    }
+    const Bvh moved_face_bvh(moved_face_boxes), moved_edge_bvh(moved_edge_boxes);
+    // Calls f(face) for the cloth faces a box meets: all of them, or only the moved ones.
+    auto cloth_faces_near = [&](const Aabb& box, bool all, auto&& f) {
+      if (all) face_bvh->query(box, f);
+      else moved_face_bvh.query(box, [&](int32_t k) { f(moved_faces[static_cast<std::size_t>(k)]); });
+    };
+    auto cloth_edges_near = [&](const Aabb& box, bool all, auto&& f) {
+      if (all) edge_bvh->query(box, f);
+      else moved_edge_bvh.query(box, [&](int32_t k) { f(moved_edges[static_cast<std::size_t>(k)]); });
+    };
+
     // Every query primitive (cloth vertex, obstacle vertex, cloth edge) traverses its hierarchy
     // and tests its candidates in parallel, into its own list; the lists are taken in primitive
     // order, so the results do not depend on the thread count.
-    auto wanted = [&](std::initializer_list<PointRef> pts) {
-      if (round == 0) return true;  // later rounds: only pairs a projection has moved
-      for (const PointRef& p : pts)
-        if (p.obstacle < 0 && moved[static_cast<std::size_t>(p.index)]) return true;
-      return false;
-    };
     auto add_constraint = [&](std::array<PointRef, 4> pts, std::array<double, 4> w, Vec3 n, std::optional<ImpactConstraint>& out) {
       ImpactConstraint c;
       c.weights = w;
@@ -186,13 +214,11 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     };
     using Hits = std::vector<ImpactConstraint>;
     auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri, Hits& out) {
-      if (!wanted({p, tri[0], tri[1], tri[2]})) return;
       std::optional<ImpactConstraint> hit;
       vertex_face(p, tri, hit);
       if (hit) out.push_back(*hit);
     };
     auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, Hits& out) {
-      if (!wanted({a, b, c, d})) return;
       std::optional<ImpactConstraint> hit;
       edge_edge(a, b, c, d, hit);
       if (hit) out.push_back(*hit);
@@ -206,10 +232,12 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const PointRef p{-1, v};
       const Aabb box = path_box({p});
       Hits& out = vertex_hits[static_cast<std::size_t>(v)];
-      face_bvh->query(box, [&](int32_t f) {
+      const bool all = first_round || moved[static_cast<std::size_t>(v)];
+      cloth_faces_near(box, all, [&](int32_t f) {
         const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
         if (t[0] != v && t[1] != v && t[2] != v) vf(p, cloth_tri(static_cast<std::size_t>(f)), out);
       });
+      if (!all) continue;
       for (std::size_t o = 0; o < obstacles_.size(); ++o)
         obstacle_face_bvh[o]->query(box, [&](int32_t f) { vf(p, obstacle_tri(o, static_cast<std::size_t>(f)), out); });
     }
@@ -221,7 +249,8 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
 #pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
       for (int32_t v = 0; v < nv; ++v) {
         const PointRef p{static_cast<int32_t>(o), v};
-        face_bvh->query(path_box({p}), [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]); });
+        cloth_faces_near(path_box({p}), first_round,
+                         [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]); });
       }
     }
     // Cloth edges against cloth edges (each pair once, from its lower edge) and obstacle edges.
@@ -232,12 +261,14 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
       const Aabb box = path_box({{-1, A[0]}, {-1, A[1]}});
       Hits& out = edge_hits[static_cast<std::size_t>(ea)];
-      edge_bvh->query(box, [&](int32_t eb) {
+      const bool all = first_round || has_moved({A[0], A[1]});
+      cloth_edges_near(box, all, [&](int32_t eb) {
         if (eb <= ea) return;
         const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
         if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
         ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, out);
       });
+      if (!all) continue;
       for (std::size_t o = 0; o < obstacles_.size(); ++o) {
         const auto oi = static_cast<int32_t>(o);
         obstacle_edge_bvh[o]->query(box, [&](int32_t eo) {
