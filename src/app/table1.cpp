@@ -91,11 +91,33 @@ struct Run {
   std::string scene, mode;
   int status = 0;          // exit status of the child
   long peak_kib = 0;       // its peak resident memory
+  double cpu_seconds = 0;  // its user and system CPU time, all threads
+  double steal = -1;       // share of the machine's CPU time the hypervisor took meanwhile (-1: unknown)
   RunTable table;
 };
 
-// Runs argv as a child process; returns its exit status (128 + signal if killed) and peak memory.
-int run_child(const std::vector<std::string>& argv, long& peak_kib) {
+// The machine's CPU time from /proc/stat's first line, in clock ticks: the total (user, nice,
+// system, idle, iowait, irq, softirq, steal) and the steal, time a virtual machine's CPUs were
+// ready but the host ran something else. Zeros where /proc/stat cannot be read.
+struct CpuTicks {
+  long long total = 0, steal = 0;
+};
+CpuTicks machine_ticks() {
+  std::ifstream stat("/proc/stat");
+  std::string cpu;
+  CpuTicks t;
+  if (!(stat >> cpu) || cpu != "cpu") return t;
+  long long v = 0;
+  for (int i = 0; i < 8 && stat >> v; ++i) {
+    t.total += v;
+    if (i == 7) t.steal = v;
+  }
+  return t;
+}
+
+// Runs argv as a child process; returns its exit status (128 + signal if killed), peak memory
+// and CPU time.
+int run_child(const std::vector<std::string>& argv, long& peak_kib, double& cpu_seconds) {
   std::vector<char*> cargs;
   for (const auto& a : argv) cargs.push_back(const_cast<char*>(a.c_str()));
   cargs.push_back(nullptr);
@@ -107,6 +129,8 @@ int run_child(const std::vector<std::string>& argv, long& peak_kib) {
   while (wait4(pid, &status, 0, &usage) < 0)
     if (errno != EINTR) throw InputError("/proc/self/exe", "", "lost a child run");
   peak_kib = usage.ru_maxrss;
+  cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
@@ -133,14 +157,16 @@ const Run* find_run(const std::vector<Run>& runs, const std::string& scene, cons
 void write_tables(const std::vector<Run>& runs, const Table1Args& args, int threads) {
   std::ofstream csv(args.out + "/table1.csv");
   csv << "scene,mode,status,frames,faces_min,faces_max,faces_mean,vertices_min,vertices_max,vertices_mean,"
-         "seconds_min,seconds_max,seconds_mean,speedup_vs_adaptive,speedup_vs_fixed,peak_memory_mib\n";
+         "seconds_min,seconds_max,seconds_mean,speedup_vs_adaptive,speedup_vs_fixed,peak_memory_mib,cpu_seconds_per_frame,steal_percent\n";
   std::ofstream md(args.out + "/table1.md");
   md << "# Table 1 on vdcloth's scenes\n\n"
      << today() << ", " << threads << " thread(s) a run, " << std::thread::hardware_concurrency() << " cores. "
-     << "Speed-ups are mean seconds per frame relative to the scene's adaptive and fixed runs.\n\n"
+     << "Speed-ups are mean seconds per frame relative to the scene's adaptive and fixed runs. CPU s/frame is the run's "
+        "CPU time (all threads) per frame; steal is the share of the machine's CPU time its host took during the run "
+        "(virtual machines), which slows the wall clock.\n\n"
      << "| scene | mode | frames | faces min / max / mean | vertices min / max / mean | s/frame min / max / mean | "
-        "vs adaptive | vs fixed | peak memory |\n"
-     << "| --- | --- | ---: | --- | --- | --- | ---: | ---: | ---: |\n";
+        "vs adaptive | vs fixed | peak memory | CPU s/frame | steal |\n"
+     << "| --- | --- | ---: | --- | --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
   for (const Run& r : runs) {
     const RunTable& t = r.table;
     const Run* adaptive = find_run(runs, r.scene, "adaptive");
@@ -149,16 +175,19 @@ void write_tables(const std::vector<Run>& runs, const Table1Args& args, int thre
       return base && base->table.frames > 0 && t.seconds_mean > 0 ? base->table.seconds_mean / t.seconds_mean : 0.0;
     };
     const std::string status = r.status == 0 ? "done" : "failed (exit " + std::to_string(r.status) + ")";
+    const double cpu_per_frame = t.frames > 0 ? r.cpu_seconds / t.frames : 0.0;
     csv << r.scene << "," << r.mode << "," << (r.status == 0 ? "done" : "failed") << "," << t.frames << "," << t.faces_min << ","
         << t.faces_max << "," << fixed_cell(t.faces_mean, 1) << "," << t.vertices_min << "," << t.vertices_max << ","
         << fixed_cell(t.vertices_mean, 1) << "," << fixed_cell(t.seconds_min, 4) << "," << fixed_cell(t.seconds_max, 4) << ","
         << fixed_cell(t.seconds_mean, 4) << "," << fixed_cell(speedup(adaptive), 2) << "," << fixed_cell(speedup(fixed), 2) << ","
-        << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << "\n";
+        << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << "," << fixed_cell(cpu_per_frame, 4) << ","
+        << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1)) << "\n";
     md << "| " << r.scene << " | " << r.mode << (r.status == 0 ? "" : " (" + status + ")") << " | " << t.frames << " | "
        << t.faces_min << " / " << t.faces_max << " / " << fixed_cell(t.faces_mean, 0) << " | " << t.vertices_min << " / "
        << t.vertices_max << " / " << fixed_cell(t.vertices_mean, 0) << " | " << fixed_cell(t.seconds_min, 3) << " / "
        << fixed_cell(t.seconds_max, 3) << " / " << fixed_cell(t.seconds_mean, 3) << " | " << fixed_cell(speedup(adaptive), 2)
-       << "x | " << fixed_cell(speedup(fixed), 2) << "x | " << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << " MiB |\n";
+       << "x | " << fixed_cell(speedup(fixed), 2) << "x | " << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << " MiB | "
+       << (cpu_per_frame > 0 ? fixed_cell(cpu_per_frame, 3) : "") << " | " << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1) + "%") << " |\n";
   }
   // Per frame, adaptive against view (the data of the seed paper's Figure 5).
   std::vector<std::string> scenes;
@@ -282,11 +311,20 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
         }
         out << "vdcloth bench table1: " << name << ", " << mode << " mode" << std::endl;
         fs::remove(dir + "/stats.csv", ec);
-        r.status = run_child(child, r.peak_kib);
-        std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << "\n";
+        const CpuTicks before = machine_ticks();
+        r.status = run_child(child, r.peak_kib, r.cpu_seconds);
+        const CpuTicks after = machine_ticks();
+        if (after.total > before.total) r.steal = static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total);
+        std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
         if (r.status != 0) err << "vdcloth bench table1: " << name << " in " << mode << " mode failed (exit " << r.status << ")" << std::endl;
-      } else if (!(std::ifstream(dir + "/run_status.txt") >> r.status >> r.peak_kib)) {
-        continue;  // never run into OUT
+      } else {
+        // status and peak memory, then CPU seconds and steal (absent in older files)
+        std::ifstream status(dir + "/run_status.txt");
+        if (!(status >> r.status >> r.peak_kib)) continue;  // never run into OUT
+        if (!(status >> r.cpu_seconds >> r.steal)) {
+          r.cpu_seconds = 0;
+          r.steal = -1;
+        }
       }
       if (fs::is_regular_file(dir + "/stats.csv")) r.table = read_run_table(dir + "/stats.csv");
       runs.push_back(std::move(r));

@@ -178,6 +178,57 @@ TEST_F(CliTest, RunWritesMeshesEveryNthFrameOnly) {
   EXPECT_TRUE(fs::is_empty(dir_ / "out" / "frames"));
 }
 
+TEST_F(CliTest, RenderDrawsEachFrameAndARunComparedWithItselfMatchesExactly) {
+  const std::string camera =
+      R"("camera": {"fov": 40, "width": 160, "height": 120, "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}]}, )";
+  const std::string path = scene("", camera);
+  ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "2", "--threads", "1"}), kExitOk) << err_.str();
+  ASSERT_EQ(run({"render", path, out_dir(), "--scale", "1"}), kExitOk) << err_.str();
+  for (int f = 0; f <= 2; ++f) EXPECT_TRUE(fs::exists(dir_ / "out" / "render" / ("frame_000" + std::to_string(f) + ".png"))) << f;
+  ASSERT_EQ(run({"render", path, out_dir(), "--compare", out_dir(), "--every", "2", "--scale", "0.5"}), kExitOk) << err_.str();
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "compare" / "compare_0000.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "compare" / "compare_0001.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "compare" / "compare.csv.partial"));
+  std::ifstream csv(dir_ / "out" / "compare" / "compare.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "frame,time,cloth_pixels_a,cloth_pixels_b,cloth_iou,mean_abs_diff");
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::vector<std::string> cells;
+    std::stringstream cut(line);
+    for (std::string cell; std::getline(cut, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 6u) << line;
+    EXPECT_GT(std::stoi(cells[2]), 100) << "the sheet is in the picture: " << line;
+    EXPECT_EQ(cells[2], cells[3]) << line;
+    EXPECT_EQ(cells[4], "1") << line;
+    EXPECT_EQ(cells[5], "0") << line;
+  }
+  EXPECT_EQ(rows, 2);  // frames 0 and 2
+}
+
+TEST_F(CliTest, RenderBadInputsExitTwoNamingTheProblem) {
+  const std::string no_camera = scene();
+  ASSERT_EQ(run({"run", no_camera, "--out", out_dir(), "--frames", "1", "--threads", "1"}), kExitOk) << err_.str();
+  EXPECT_EQ(run({"render", no_camera, out_dir()}), kExitBadInput);
+  EXPECT_NE(err_.str().find("no camera"), std::string::npos) << err_.str();
+  const std::string with_camera =
+      scene("", R"("camera": {"keys": [{"time": 0, "position": [0, 1, 2], "target": [0, 0, 0]}]}, )");
+  EXPECT_EQ(run({"render", with_camera, (dir_ / "nowhere").string()}), kExitBadInput);
+  EXPECT_NE(err_.str().find("nowhere/frames"), std::string::npos) << err_.str();
+  EXPECT_EQ(run({"render", with_camera, out_dir(), "--scale", "0"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("--scale"), std::string::npos) << err_.str();
+  EXPECT_EQ(run({"render", with_camera}), kExitBadInput);
+  EXPECT_EQ(run({"render", with_camera, out_dir(), "--frobnicate"}), kExitBadInput);
+  ASSERT_EQ(run({"run", no_camera, "--out", (dir_ / "bare").string(), "--frames", "1", "--threads", "1", "--mesh-every", "0"}), kExitOk);
+  EXPECT_EQ(run({"render", with_camera, (dir_ / "bare").string()}), kExitBadInput);
+  EXPECT_NE(err_.str().find("no frame meshes"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "bare" / "render"));
+  EXPECT_EQ(run({"render", "--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("--compare"), std::string::npos);
+}
+
 TEST_F(CliTest, Table1ReadsARunsStatistics) {
   const std::string csv = write("stats.csv", "frame,faces,vertices,seconds,substeps\n1,100,60,0.5,8\n2,300,170,1.5,8\n3,200,120,1.0,8\n");
   const RunTable t = read_run_table(csv);
@@ -237,7 +288,10 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
     std::istringstream row(line);
     std::vector<std::string> cells;
     for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), 16u) << line;
+    ASSERT_EQ(cells.size(), 18u) << line;
+    EXPECT_GT(std::stod(cells[16]), 0) << "CPU seconds a frame: " << line;
+    EXPECT_GE(std::stod(cells[17]), 0) << "steal percent: " << line;
+    EXPECT_LE(std::stod(cells[17]), 100) << "steal percent: " << line;
     EXPECT_EQ(cells[2], "done") << line;
     EXPECT_EQ(cells[3], "2") << line;
     if (cells[1] == "adaptive") {

@@ -1,0 +1,72 @@
+// Scanline-free rasterization: each triangle's pixel box is walked with edge functions, depth is
+// interpolated as 1/z (linear in screen space) and kept in a z-buffer.
+#include "render/rasterizer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace vdc {
+
+namespace {
+
+const Vec3 kBackground(0.86, 0.88, 0.91);
+
+uint8_t to_byte(double c) { return static_cast<uint8_t>(std::lround(255.0 * std::clamp(c, 0.0, 1.0))); }
+
+}  // namespace
+
+RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes, double scale) {
+  const int width = std::max(1, static_cast<int>(std::lround(camera.width * scale)));
+  const int height = std::max(1, static_cast<int>(std::lround(camera.height * scale)));
+  const auto pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  RenderedFrame frame;
+  frame.image.width = width;
+  frame.image.height = height;
+  frame.image.rgb.resize(3 * pixels);
+  frame.mesh.assign(pixels, -1);
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(kBackground[k]);
+  std::vector<double> depth(pixels, std::numeric_limits<double>::infinity());
+
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const RenderMesh& mesh = meshes[m];
+    std::vector<Vec2> screen(mesh.positions.size());
+    std::vector<double> z(mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) screen[i] = scale * camera.project(mesh.positions[i], &z[i]);
+    for (const auto& f : mesh.faces) {
+      const std::array<std::size_t, 3> v = {static_cast<std::size_t>(f[0]), static_cast<std::size_t>(f[1]), static_cast<std::size_t>(f[2])};
+      if (z[v[0]] < camera.near || z[v[1]] < camera.near || z[v[2]] < camera.near) continue;
+      const Vec2 &a = screen[v[0]], &b = screen[v[1]], &c = screen[v[2]];
+      const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+      if (!(std::abs(area) > 1e-12)) continue;
+      // Headlight shading: brightness from the angle between the face and the line of sight.
+      const Vec3 &pa = mesh.positions[v[0]], &pb = mesh.positions[v[1]], &pc = mesh.positions[v[2]];
+      const Vec3 normal = (pb - pa).cross(pc - pa).normalized();
+      const Vec3 sight = ((pa + pb + pc) / 3.0 - camera.position).normalized();
+      const Vec3 colour = mesh.colour * (0.25 + 0.75 * std::abs(normal.dot(sight)));
+      const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
+      const int x1 = std::min(width - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
+      const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
+      const int y1 = std::min(height - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const Vec2 p(x + 0.5, y + 0.5);
+          // Barycentric weights from the signed areas of the sub-triangles opposite each corner.
+          const double wa = ((b - p).x() * (c - p).y() - (b - p).y() * (c - p).x()) / area;
+          const double wb = ((c - p).x() * (a - p).y() - (c - p).y() * (a - p).x()) / area;
+          const double wc = 1 - wa - wb;
+          if (wa < 0 || wb < 0 || wc < 0) continue;
+          const double d = 1.0 / (wa / z[v[0]] + wb / z[v[1]] + wc / z[v[2]]);
+          const auto i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+          if (d >= depth[i]) continue;
+          depth[i] = d;
+          frame.mesh[i] = static_cast<int32_t>(m);
+          for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(colour[k]);
+        }
+    }
+  }
+  return frame;
+}
+
+}  // namespace vdc

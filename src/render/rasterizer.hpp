@@ -1,0 +1,29 @@
+// Preview rendering of a frame through the scene's camera: z-buffered triangles, flat-shaded by
+// a light at the eye, for looking at a shot and comparing two runs of it pixel by pixel. Not a
+// production renderer: no clipping (a triangle with a corner behind the near plane is skipped),
+// no antialiasing.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "core/math.hpp"
+#include "io/png.hpp"
+#include "view/camera.hpp"
+
+namespace vdc {
+
+struct RenderMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<int32_t, 3>> faces;
+  Vec3 colour = Vec3(0.7, 0.7, 0.7);  // base RGB in [0, 1]
+};
+
+struct RenderedFrame {
+  RgbImage image;
+  std::vector<int32_t> mesh;  // per pixel: the index of the nearest mesh, -1 for the background
+};
+
+// The image of `meshes` seen by `camera`, at `scale` times the camera's image size.
+RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes, double scale = 1.0);
+
+}  // namespace vdc

@@ -1,0 +1,159 @@
+// Preview rendering: the PNG encoding checked against the published check values of its CRC and
+// Adler-32 and by decoding its stored blocks; the rasterizer against the analytic size of a
+// square's image and a z-buffer occlusion; the comparison against a known overlap.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "io/png.hpp"
+#include "render/compare.hpp"
+#include "render/rasterizer.hpp"
+
+namespace vdc {
+namespace {
+
+const uint8_t* bytes(const char* s) { return reinterpret_cast<const uint8_t*>(s); }
+
+uint32_t read_u32(const std::vector<uint8_t>& b, std::size_t at) {
+  return (uint32_t(b[at]) << 24) | (uint32_t(b[at + 1]) << 16) | (uint32_t(b[at + 2]) << 8) | uint32_t(b[at + 3]);
+}
+
+TEST(Png, ChecksumsMatchTheirPublishedCheckValues) {
+  EXPECT_EQ(crc32(bytes("123456789"), 9), 0xCBF43926u);  // CRC-32/ISO-HDLC check value
+  EXPECT_EQ(adler32(bytes("Wikipedia"), 9), 0x11E60398u);
+  EXPECT_EQ(adler32(nullptr, 0), 1u);
+}
+
+// Walks the chunks, checks each CRC, and inflates the stored blocks of IDAT back into the rows.
+TEST(Png, ChunksCarryValidChecksumsAndTheStoredBlocksHoldThePixels) {
+  RgbImage image;
+  image.width = 200;
+  image.height = 120;  // 120 rows of 601 bytes: two stored blocks
+  for (int i = 0; i < 3 * image.width * image.height; ++i) image.rgb.push_back(static_cast<uint8_t>(i * 7 % 251));
+  const std::vector<uint8_t> png = encode_png(image);
+  const uint8_t signature[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  ASSERT_EQ(std::memcmp(png.data(), signature, 8), 0);
+  std::vector<uint8_t> idat;
+  std::vector<std::string> types;
+  for (std::size_t at = 8; at < png.size();) {
+    const uint32_t length = read_u32(png, at);
+    const std::string type(png.begin() + static_cast<std::ptrdiff_t>(at + 4), png.begin() + static_cast<std::ptrdiff_t>(at + 8));
+    types.push_back(type);
+    EXPECT_EQ(read_u32(png, at + 8 + length), crc32(png.data() + at + 4, 4 + length)) << type;
+    if (type == "IHDR") {
+      EXPECT_EQ(read_u32(png, at + 8), 200u);
+      EXPECT_EQ(read_u32(png, at + 12), 120u);
+      EXPECT_EQ(png[at + 16], 8);  // bit depth
+      EXPECT_EQ(png[at + 17], 2);  // truecolour
+    }
+    if (type == "IDAT") idat.assign(png.begin() + static_cast<std::ptrdiff_t>(at + 8), png.begin() + static_cast<std::ptrdiff_t>(at + 8 + length));
+    at += 12 + length;
+  }
+  EXPECT_EQ(types, (std::vector<std::string>{"IHDR", "IDAT", "IEND"}));
+  ASSERT_GE(idat.size(), 6u);
+  EXPECT_EQ((idat[0] * 256 + idat[1]) % 31, 0);  // zlib header check
+  std::vector<uint8_t> raw;
+  std::size_t at = 2;
+  int blocks = 0;
+  for (bool last = false; !last; ++blocks) {
+    last = idat[at] & 1;
+    ASSERT_EQ(idat[at] >> 1, 0) << "stored block";
+    const int n = idat[at + 1] | (idat[at + 2] << 8), complement = idat[at + 3] | (idat[at + 4] << 8);
+    EXPECT_EQ(n ^ complement, 0xFFFF);
+    raw.insert(raw.end(), idat.begin() + static_cast<std::ptrdiff_t>(at + 5), idat.begin() + static_cast<std::ptrdiff_t>(at + 5 + static_cast<std::size_t>(n)));
+    at += 5 + static_cast<std::size_t>(n);
+  }
+  EXPECT_EQ(blocks, 2);
+  EXPECT_EQ(read_u32(idat, at), adler32(raw.data(), raw.size()));
+  ASSERT_EQ(raw.size(), static_cast<std::size_t>(120 * 601));
+  for (int y = 0; y < 120; ++y) {
+    EXPECT_EQ(raw[static_cast<std::size_t>(y * 601)], 0) << "filter of row " << y;
+    EXPECT_EQ(std::memcmp(&raw[static_cast<std::size_t>(y * 601 + 1)], &image.rgb[static_cast<std::size_t>(y * 600)], 600), 0) << "row " << y;
+  }
+}
+
+Camera test_camera() {
+  Camera c;
+  c.position = Vec3(0, 0, 5);
+  c.target = Vec3::Zero();
+  c.fov_y_degrees = 40;
+  c.width = 320;
+  c.height = 240;
+  return c;
+}
+
+// An axis-aligned square of half-width s at depth z in front of test_camera, as two triangles.
+RenderMesh square(double s, double z, const Vec3& colour) {
+  RenderMesh m;
+  m.positions = {{-s, -s, z}, {s, -s, z}, {s, s, z}, {-s, s, z}};
+  m.faces = {{0, 1, 2}, {0, 2, 3}};
+  m.colour = colour;
+  return m;
+}
+
+int pixels_of(const RenderedFrame& f, int32_t mesh) { return static_cast<int>(std::count(f.mesh.begin(), f.mesh.end(), mesh)); }
+
+TEST(Rasterizer, ASquareFacingTheCameraCoversItsProjectedArea) {
+  const Camera camera = test_camera();
+  const RenderedFrame f = render(camera, {square(0.5, 0, Vec3(1, 0, 0))});
+  // Side in pixels: focal length times 1 m over 5 m.
+  const double side = camera.focal_pixels() * 1.0 / 5.0;
+  const int covered = pixels_of(f, 0);
+  EXPECT_GE(covered, static_cast<int>(std::floor(side - 1) * std::floor(side - 1)));
+  EXPECT_LE(covered, static_cast<int>(std::ceil(side + 1) * std::ceil(side + 1)));
+  // Facing the light at the eye: full brightness, red; the background elsewhere.
+  const std::size_t centre = 3 * (120 * 320 + 160);
+  EXPECT_EQ(f.image.rgb[centre], 255);
+  EXPECT_EQ(f.image.rgb[centre + 1], 0);
+  EXPECT_EQ(f.mesh[0], -1);
+}
+
+TEST(Rasterizer, TheNearerSurfaceHidesTheFartherInEitherOrder) {
+  const Camera camera = test_camera();
+  const RenderMesh near = square(0.2, 1, Vec3(0, 1, 0)), far = square(0.5, 0, Vec3(1, 0, 0));
+  for (const bool near_first : {true, false}) {
+    const RenderedFrame f = render(camera, near_first ? std::vector<RenderMesh>{near, far} : std::vector<RenderMesh>{far, near});
+    const int32_t near_index = near_first ? 0 : 1;
+    EXPECT_EQ(f.mesh[120 * 320 + 160], near_index);
+    const double near_side = camera.focal_pixels() * 0.4 / 4.0;
+    EXPECT_NEAR(pixels_of(f, near_index), near_side * near_side, 2 * near_side + 2);
+  }
+}
+
+TEST(Rasterizer, TrianglesBehindTheNearPlaneAreNotDrawnAndScaleSizesTheImage) {
+  Camera camera = test_camera();
+  const RenderedFrame behind = render(camera, {square(0.5, 6, Vec3(1, 1, 1))});
+  EXPECT_EQ(pixels_of(behind, 0), 0);
+  const RenderedFrame half = render(camera, {square(0.5, 0, Vec3(1, 1, 1))}, 0.5);
+  EXPECT_EQ(half.image.width, 160);
+  EXPECT_EQ(half.image.height, 120);
+  const double side = 0.5 * camera.focal_pixels() / 5.0;
+  EXPECT_NEAR(pixels_of(half, 0), side * side, 2 * side + 2);
+}
+
+TEST(RenderComparison, IdenticalRendersMatchAndAShiftedSquareOverlapsAsExpected) {
+  const Camera camera = test_camera();
+  const RenderedFrame a = render(camera, {square(0.5, 0, Vec3(0.8, 0.3, 0.2))});
+  const RenderComparison same = compare_renders(a, {1}, a, {1});
+  EXPECT_EQ(same.cloth_iou, 1.0);
+  EXPECT_EQ(same.mean_abs_diff, 0.0);
+  EXPECT_EQ(same.cloth_pixels_a, pixels_of(a, 0));
+  // The same square moved sideways by a quarter of its side: overlap 3/4 over union 5/4.
+  RenderMesh moved = square(0.5, 0, Vec3(0.8, 0.3, 0.2));
+  for (Vec3& p : moved.positions) p.x() += 0.25;
+  const RenderedFrame b = render(camera, {moved});
+  const RenderComparison shifted = compare_renders(a, {1}, b, {1});
+  EXPECT_NEAR(shifted.cloth_iou, 0.6, 0.02);
+  // Not cloth (a body, say): no cloth pixels, nothing to compare.
+  const RenderComparison body = compare_renders(a, {0}, b, {0});
+  EXPECT_EQ(body.cloth_pixels_a, 0);
+  EXPECT_EQ(body.cloth_iou, 1.0);
+  const RgbImage panels = side_by_side(a.image, b.image);
+  EXPECT_EQ(panels.width, 3 * 320 + 8);
+  EXPECT_EQ(panels.height, 240);
+}
+
+}  // namespace
+}  // namespace vdc
