@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <regex>
@@ -98,14 +99,10 @@ std::map<int, FrameFiles> frames_of(const std::string& run) {
   return frames;
 }
 
-// A garment's colour, the same in every run: from a small palette by a hash of its name.
-Vec3 cloth_colour(const std::string& key) {
-  static const Vec3 palette[] = {{0.80, 0.25, 0.22}, {0.22, 0.42, 0.78}, {0.93, 0.72, 0.20}, {0.30, 0.65, 0.38},
-                                 {0.60, 0.35, 0.70}, {0.90, 0.50, 0.25}, {0.25, 0.70, 0.75}, {0.85, 0.40, 0.60}};
-  std::size_t h = 0;
-  for (char c : key) h = 31 * h + static_cast<unsigned char>(c);
-  return palette[h % (sizeof palette / sizeof palette[0])];
-}
+// Garment colours, given in name order, so that the same garment has the same colour in every
+// run of a scene.
+const Vec3 kClothPalette[] = {{0.80, 0.25, 0.22}, {0.93, 0.72, 0.20}, {0.22, 0.42, 0.78}, {0.30, 0.65, 0.38},
+                              {0.60, 0.35, 0.70}, {0.90, 0.50, 0.25}, {0.25, 0.70, 0.75}, {0.85, 0.40, 0.60}};
 
 struct LoadedFrame {
   std::vector<RenderMesh> meshes;
@@ -114,13 +111,14 @@ struct LoadedFrame {
 
 LoadedFrame load_frame(const FrameFiles& files) {
   LoadedFrame f;
+  std::size_t garments = 0;
   for (const auto& [key, path] : files) {
     const bool cloth = key.rfind("cloth_", 0) == 0;
     const MeshSource source = read_obj_source(path, false);
     RenderMesh mesh;
     mesh.positions = source.positions;
     for (const auto& face : source.faces) mesh.faces.push_back({face[0].node, face[1].node, face[2].node});
-    mesh.colour = cloth ? cloth_colour(key) : Vec3(0.78, 0.74, 0.70);
+    mesh.colour = cloth ? kClothPalette[garments++ % std::size(kClothPalette)] : Vec3(0.78, 0.74, 0.70);
     f.meshes.push_back(std::move(mesh));
     f.cloth.push_back(cloth);
   }

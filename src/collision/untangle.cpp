@@ -51,6 +51,11 @@ class Untangler {
 
   UntangleReport run() {
     UntangleReport report;
+    // The positions with the fewest crossing pairs so far: the moves are local and can make
+    // things worse where pushes meet (a node pushed out of one face through a neighbour), so
+    // the result is never worse than the best state seen, the start included.
+    Eigen::VectorXd best_x;
+    int best = -1;
     for (int it = 0; it <= params_.max_iterations; ++it) {
       const std::size_t n = static_cast<std::size_t>(x_.size() / 3);
       gradient_.assign(n, Vec3::Zero());
@@ -61,11 +66,20 @@ class Untangler {
         report.obstacle_pairs = obstacle_pairs;
       }
       report.remaining = cloth_pairs + obstacle_pairs;
+      if (best < 0 || report.remaining < best) {
+        best = report.remaining;
+        if (best > 0) best_x = x_;
+      }
       if (report.remaining == 0 || it == params_.max_iterations) break;
       ++report.iterations;
       const int moved = move();
       report.moves += moved;
       if (moved == 0) break;  // nothing can move (crossings that only touch, or held nodes)
+    }
+    if (report.remaining > best) {
+      x_ = best_x;
+      report.restored_pairs = report.remaining;
+      report.remaining = best;
     }
     return report;
   }

@@ -5,7 +5,8 @@
 // crossing moves its edge against its face along the gradient of the contour length, so the
 // contour shrinks until it vanishes. Cloth-obstacle: obstacles have an outside, so cloth that
 // crosses one is moved out along the obstacle's normal (a contour-length step could push it
-// further in). Iterates until no crossing is left or the iteration bound is reached.
+// further in). Iterates until no crossing is left or the iteration bound is reached, and ends
+// at the iterate with the fewest crossing pairs.
 #pragma once
 #include <array>
 #include <vector>
@@ -28,6 +29,8 @@ struct UntangleReport {
   int cloth_pairs = 0;      // intersecting cloth triangle pairs found by the first pass
   int obstacle_pairs = 0;   // intersecting cloth-obstacle triangle pairs found by the first pass
   int remaining = 0;        // intersecting pairs (of both kinds) left at the end
+  int restored_pairs = 0;   // > 0: the last iterate had this many pairs, more than an earlier
+                            // one, whose positions were restored
 };
 
 // Moves x (3n, cloth nodes) so that no two cloth faces that share no node intersect and no cloth
