@@ -74,15 +74,8 @@ TEST(Png, ChunksCarryValidChecksumsAndTheStoredBlocksHoldThePixels) {
   }
 }
 
-Camera test_camera() {
-  Camera c;
-  c.position = Vec3(0, 0, 5);
-  c.target = Vec3::Zero();
-  c.fov_y_degrees = 40;
-  c.width = 320;
-  c.height = 240;
-  return c;
-}
+// At (0, 0, 5) looking at the origin, 40 degrees, 320 x 240 pixels.
+Camera test_camera() { return Camera{.position = Vec3(0, 0, 5), .target = Vec3::Zero(), .fov_y_degrees = 40, .width = 320, .height = 240}; }
 
 // An axis-aligned square of half-width s at depth z in front of test_camera, as two triangles.
 RenderMesh square(double s, double z, const Vec3& colour) {
