@@ -4,6 +4,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <cmath>
+#include <mutex>
 
 #include <omp.h>
 
@@ -24,6 +25,15 @@ void cholmod_serial(F&& f) {
 #pragma omp master
     f();
   }
+}
+
+// METIS keeps its random generator in process-wide state (GKlib's), reseeded at the start of
+// every ordering: two simulations ordering at once (the parts of a crowd) draw from each other's
+// sequence and get orderings, and so rounding, that change from run to run. One ordering at a
+// time keeps every run reproducible. The lock guards that library state, so it is process-wide.
+std::mutex& metis_lock() {
+  static std::mutex lock;
+  return lock;
 }
 
 // CHOLMOD's supernodal Cholesky with a fill-reducing ordering computed on the matrix's 3x3
@@ -59,7 +69,12 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
     g.sorted = 1;
     g.packed = 1;
     std::vector<int> node_perm(n), perm(3 * n);
-    if (!cholmod_metis(&g, nullptr, 0, 1, node_perm.data(), &cholmod())) {
+    int ordered = 0;
+    {
+      const std::lock_guard<std::mutex> one_at_a_time(metis_lock());
+      ordered = cholmod_metis(&g, nullptr, 0, 1, node_perm.data(), &cholmod());
+    }
+    if (!ordered) {
       Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>::analyzePattern(a);
       return;
     }
