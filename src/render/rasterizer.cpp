@@ -1,5 +1,5 @@
 // Scanline-free rasterization: each triangle's pixel box is walked with edge functions, depth is
-// interpolated as 1/z (linear in screen space) and kept in a z-buffer.
+// interpolated as 1/z (linear in screen space) and kept in a z-buffer; Gouraud shading.
 #include "render/rasterizer.hpp"
 
 #include <algorithm>
@@ -29,22 +29,31 @@ RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes
     for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(kBackground[k]);
   std::vector<double> depth(pixels, std::numeric_limits<double>::infinity());
 
+  const Vec3 forward = camera.basis()[2];
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const RenderMesh& mesh = meshes[m];
     std::vector<Vec2> screen(mesh.positions.size());
     std::vector<double> z(mesh.positions.size());
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) screen[i] = scale * camera.project(mesh.positions[i], &z[i]);
+    // Gouraud shading: brightness at each vertex from its area-weighted normal against the
+    // view direction (a distant light at the eye, both sides lit), interpolated across faces.
+    std::vector<Vec3> vertex_normal(mesh.positions.size(), Vec3::Zero());
+    for (const auto& f : mesh.faces) {
+      const Vec3 n = (mesh.positions[static_cast<std::size_t>(f[1])] - mesh.positions[static_cast<std::size_t>(f[0])])
+                         .cross(mesh.positions[static_cast<std::size_t>(f[2])] - mesh.positions[static_cast<std::size_t>(f[0])]);
+      for (int32_t v : f) vertex_normal[static_cast<std::size_t>(v)] += n;
+    }
+    std::vector<double> brightness(mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      const double len = vertex_normal[i].norm();
+      brightness[i] = 0.25 + 0.75 * (len > 0 ? std::abs(vertex_normal[i].dot(forward)) / len : 1.0);
+    }
     for (const auto& f : mesh.faces) {
       const std::array<std::size_t, 3> v = {static_cast<std::size_t>(f[0]), static_cast<std::size_t>(f[1]), static_cast<std::size_t>(f[2])};
       if (z[v[0]] < camera.near || z[v[1]] < camera.near || z[v[2]] < camera.near) continue;
       const Vec2 &a = screen[v[0]], &b = screen[v[1]], &c = screen[v[2]];
       const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
       if (!(std::abs(area) > 1e-12)) continue;
-      // Headlight shading: brightness from the angle between the face and the line of sight.
-      const Vec3 &pa = mesh.positions[v[0]], &pb = mesh.positions[v[1]], &pc = mesh.positions[v[2]];
-      const Vec3 normal = (pb - pa).cross(pc - pa).normalized();
-      const Vec3 sight = ((pa + pb + pc) / 3.0 - camera.position).normalized();
-      const Vec3 colour = mesh.colour * (0.25 + 0.75 * std::abs(normal.dot(sight)));
       const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
       const int x1 = std::min(width - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
       const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
@@ -62,6 +71,7 @@ RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes
           if (d >= depth[i]) continue;
           depth[i] = d;
           frame.mesh[i] = static_cast<int32_t>(m);
+          const Vec3 colour = mesh.colour * (wa * brightness[v[0]] + wb * brightness[v[1]] + wc * brightness[v[2]]);
           for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(colour[k]);
         }
     }

@@ -1,7 +1,7 @@
-// Preview rendering of a frame through the scene's camera: z-buffered triangles, flat-shaded by
-// a light at the eye, for looking at a shot and comparing two runs of it pixel by pixel. Not a
-// production renderer: no clipping (a triangle with a corner behind the near plane is skipped),
-// no antialiasing.
+// Preview rendering of a frame through the scene's camera: z-buffered triangles, smooth-shaded
+// (vertex normals) by a distant light at the eye, for looking at a shot and comparing two runs
+// of it pixel by pixel. Not a production renderer: no clipping (a triangle with a corner behind
+// the near plane is skipped), no antialiasing.
 #pragma once
 #include <array>
 #include <vector>

@@ -126,6 +126,24 @@ TEST(Rasterizer, TrianglesBehindTheNearPlaneAreNotDrawnAndScaleSizesTheImage) {
   EXPECT_NEAR(pixels_of(half, 0), side * side, 2 * side + 2);
 }
 
+// A sheet folded along x = 0: the left half faces the camera, the right half turns 60 degrees
+// away. Smooth shading leaves no step in brightness at the fold (flat shading would step from
+// full to 62%), and the face turned away is darker.
+TEST(Rasterizer, ShadingIsSmoothAcrossAFold) {
+  const Camera camera = test_camera();
+  RenderMesh fold;
+  const double c = std::cos(M_PI / 3), s = std::sin(M_PI / 3);
+  fold.positions = {{-0.5, -0.5, 0}, {0, -0.5, 0}, {0, 0.5, 0}, {-0.5, 0.5, 0}, {0.5 * c, -0.5, -0.5 * s}, {0.5 * c, 0.5, -0.5 * s}};
+  fold.faces = {{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}};
+  fold.colour = Vec3(1, 1, 1);
+  const RenderedFrame f = render(camera, {fold});
+  auto red = [&](int x) { return static_cast<int>(f.image.rgb[3 * static_cast<std::size_t>(120 * 320 + x)]); };
+  ASSERT_EQ(f.mesh[static_cast<std::size_t>(120 * 320 + 159)], 0);
+  ASSERT_EQ(f.mesh[static_cast<std::size_t>(120 * 320 + 160)], 0);
+  EXPECT_LE(std::abs(red(159) - red(160)), 12) << "left of the fold " << red(159) << ", right " << red(160);
+  EXPECT_GT(red(130), red(175)) << "the face turned away is darker";
+}
+
 TEST(RenderComparison, IdenticalRendersMatchAndAShiftedSquareOverlapsAsExpected) {
   const Camera camera = test_camera();
   const RenderedFrame a = render(camera, {square(0.5, 0, Vec3(0.8, 0.3, 0.2))});
