@@ -1,5 +1,6 @@
 #include "app/cli.hpp"
 
+#include "app/check_command.hpp"
 #include "app/render_command.hpp"
 #include "app/table1.hpp"
 
@@ -27,10 +28,12 @@ const char* kMainHelp =
     "  vdcloth bench table1 [options]     the seed paper's Table 1 on the project's scenes\n"
     "  vdcloth render SCENE.json RUN_DIR  pictures of a run through the scene's camera; with\n"
     "                 [options]           --compare, two runs side by side and their differences\n"
+    "  vdcloth check RUN_DIR [--every N]  no garment crosses itself, another or a body at any\n"
+    "                                     written frame (exact triangle tests)\n"
     "  vdcloth --help                     this text\n"
     "  vdcloth --version                  version\n"
     "\n"
-    "`vdcloth run --help`, `vdcloth bench table1 --help` and `vdcloth render --help` list the options. Exit status: 0 done, 2 bad input or usage,\n"
+    "`vdcloth run --help`, `vdcloth bench table1 --help`, `vdcloth render --help` and `vdcloth check --help` list the options. Exit status: 0 done, 2 bad input or usage,\n"
     "3 a simulation failure that could not be recovered.\n";
 
 const char* kRunHelp =
@@ -188,6 +191,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       if (args.size() < 2 || args[1] != "table1") throw UsageError("bench expects a benchmark name: table1");
       return table1_command(std::vector<std::string>(args.begin() + 2, args.end()), out, err);
     }
+    if (args[0] == "check") return check_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
     if (args[0] == "render") return render_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
     if (args[0] != "run") throw UsageError("unknown command '" + args[0] + "' (try vdcloth --help)");
     for (std::size_t i = 1; i < args.size(); ++i)

@@ -229,6 +229,40 @@ TEST_F(CliTest, RenderBadInputsExitTwoNamingTheProblem) {
   EXPECT_NE(out_.str().find("--compare"), std::string::npos);
 }
 
+TEST_F(CliTest, CheckPassesACleanRunAndListsPlantedCrossings) {
+  ASSERT_EQ(run({"run", scene(), "--out", out_dir(), "--frames", "2", "--threads", "1"}), kExitOk) << err_.str();
+  ASSERT_EQ(run({"check", out_dir()}), kExitOk) << out_.str();
+  EXPECT_NE(out_.str().find("3 frame(s)"), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("0 with crossings"), std::string::npos) << out_.str();
+  // A planted run: at frame 0 a body stands clear of the sheet, at frame 1 a wall cuts
+  // through it.
+  const fs::path frames = dir_ / "planted" / "frames";
+  fs::create_directories(frames);
+  const std::string sheet = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
+  const std::string wall = "v 0.5 -1 -1\nv 0.5 1 -1\nv 0.5 1 2\nv 0.5 -1 2\nf 1 2 3\nf 1 3 4\n";
+  const std::string apart = "v 5 -1 -1\nv 5 1 -1\nv 5 1 2\nv 5 -1 2\nf 1 2 3\nf 1 3 4\n";
+  std::ofstream(frames / "cloth_s.0000.obj") << sheet;
+  std::ofstream(frames / "obstacle_w.0000.obj") << apart;
+  std::ofstream(frames / "cloth_s.0001.obj") << sheet;
+  std::ofstream(frames / "obstacle_w.0001.obj") << wall;
+  EXPECT_EQ(run({"check", (dir_ / "planted").string()}), kExitSimulationFailed) << out_.str() << err_.str();
+  EXPECT_NE(out_.str().find("frame 1: cloth_s crosses obstacle_w"), std::string::npos) << out_.str();
+  std::ifstream csv(dir_ / "planted" / "check.csv");
+  std::string header, row, extra;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(header, "frame,mesh,other,face_pairs");
+  EXPECT_EQ(row.rfind("1,cloth_s,obstacle_w,", 0), 0u) << row;
+  EXPECT_FALSE(std::getline(csv, extra)) << "only frame 1 crosses: " << extra;
+  // Bad inputs.
+  EXPECT_EQ(run({"check"}), kExitBadInput);
+  EXPECT_EQ(run({"check", (dir_ / "nowhere").string()}), kExitBadInput);
+  EXPECT_NE(err_.str().find("nowhere/frames"), std::string::npos) << err_.str();
+  EXPECT_EQ(run({"check", out_dir(), "--every", "0"}), kExitBadInput);
+  EXPECT_EQ(run({"check", "--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("--every"), std::string::npos);
+}
+
 TEST_F(CliTest, Table1ReadsARunsStatistics) {
   const std::string csv = write("stats.csv", "frame,faces,vertices,seconds,substeps\n1,100,60,0.5,8\n2,300,170,1.5,8\n3,200,120,1.0,8\n");
   const RunTable t = read_run_table(csv);
