@@ -3,12 +3,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 
 #include "app/cli.hpp"
 #include "collision/intersection.hpp"
 #include "core/error.hpp"
 #include "io/obj.hpp"
+#include "io/run_output.hpp"
 
 namespace vdc {
 
@@ -64,19 +64,10 @@ int check_command(const std::vector<std::string>& args, std::ostream& out) {
     }
   }
   if (run.empty()) throw UsageError("check expects RUN_DIR (try vdcloth check --help)");
-  const fs::path dir = fs::path(run) / "frames";
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw InputError(dir.string(), "", "no such directory (is " + run + " the output of vdcloth run?)");
-  static const std::regex name(R"(^((cloth|obstacle)_.+)\.([0-9]{4,})\.obj$)");
-  std::map<int, std::map<std::string, std::string>> frames;  // frame -> mesh name -> file
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    std::smatch m;
-    const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, m, name)) frames[std::stoi(m[3].str())][m[1].str()] = entry.path().string();
-  }
-  if (frames.empty()) throw InputError(dir.string(), "", "no frame meshes (was the run made with --mesh-every 0?)");
+  const std::map<int, FrameFiles> frames = read_frame_files(run);
 
   const std::string csv_path = run + "/check.csv";
+  std::error_code ec;
   std::ofstream csv(csv_path + ".partial");
   if (!csv) throw InputError(csv_path + ".partial", "", "cannot write");
   csv << "frame,mesh,other,face_pairs\n";

@@ -8,13 +8,13 @@
 #include <iterator>
 #include <map>
 #include <optional>
-#include <regex>
 #include <sstream>
 
 #include "app/cli.hpp"
 #include "core/error.hpp"
 #include "io/obj.hpp"
 #include "io/png.hpp"
+#include "io/run_output.hpp"
 #include "render/compare.hpp"
 #include "render/rasterizer.hpp"
 #include "scene/scene.hpp"
@@ -80,25 +80,6 @@ RenderArgs parse_render_args(const std::vector<std::string>& args) {
   return r;
 }
 
-// The meshes of one frame of a run: file paths by "kind_name", in name order.
-using FrameFiles = std::map<std::string, std::string>;
-
-// Every frame with meshes in RUN_DIR/frames/, by number.
-std::map<int, FrameFiles> frames_of(const std::string& run) {
-  const fs::path dir = fs::path(run) / "frames";
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw InputError(dir.string(), "", "no such directory (is " + run + " the output of vdcloth run?)");
-  static const std::regex name(R"(^((cloth|obstacle)_.+)\.([0-9]{4,})\.obj$)");
-  std::map<int, FrameFiles> frames;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    std::smatch m;
-    const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, m, name)) frames[std::stoi(m[3].str())][m[1].str()] = entry.path().string();
-  }
-  if (frames.empty()) throw InputError(dir.string(), "", "no frame meshes (was the run made with --mesh-every 0?)");
-  return frames;
-}
-
 // Garment colours, given in name order, so that the same garment has the same colour in every
 // run of a scene.
 const Vec3 kClothPalette[] = {{0.80, 0.25, 0.22}, {0.93, 0.72, 0.20}, {0.22, 0.42, 0.78}, {0.30, 0.65, 0.38},
@@ -142,10 +123,10 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
   const RenderArgs r = parse_render_args(args);
   const Scene scene = load_scene(r.scene);
   if (!scene.camera) throw InputError(r.scene, "camera", "the scene has no camera to render through");
-  std::map<int, FrameFiles> frames = frames_of(r.run);
+  std::map<int, FrameFiles> frames = read_frame_files(r.run);
   std::map<int, FrameFiles> other;
   if (!r.compare.empty()) {
-    other = frames_of(r.compare);
+    other = read_frame_files(r.compare);
     for (auto it = frames.begin(); it != frames.end();) it = other.count(it->first) ? std::next(it) : frames.erase(it);
     if (frames.empty()) throw InputError(r.compare, "", "no frame in common with " + r.run);
   }

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,21 @@ std::string frame_file(const std::string& dir, const std::string& kind, const st
   return dir + "/frames/" + kind + "_" + name + "." + num + extension;
 }
 }  // namespace
+
+std::map<int, FrameFiles> read_frame_files(const std::string& run_dir) {
+  const fs::path dir = fs::path(run_dir) / "frames";
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError(dir.string(), "", "no such directory (is " + run_dir + " the output of vdcloth run?)");
+  static const std::regex name(R"(^((cloth|obstacle)_.+)\.([0-9]{4,})\.obj$)");
+  std::map<int, FrameFiles> frames;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    std::smatch m;
+    const std::string file = entry.path().filename().string();
+    if (std::regex_match(file, m, name)) frames[std::stoi(m[3].str())][m[1].str()] = entry.path().string();
+  }
+  if (frames.empty()) throw InputError(dir.string(), "", "no frame meshes (was the run made with --mesh-every 0?)");
+  return frames;
+}
 
 RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   std::error_code ec;

@@ -2,11 +2,19 @@
 // frame), stats.csv (one row a frame) and summary.json.
 #pragma once
 #include <fstream>
+#include <map>
 #include <string>
 
 #include "sim/ensemble.hpp"
 
 namespace vdc {
+
+// The mesh files of one written frame, by mesh name ("cloth_<garment>", "obstacle_<name>").
+using FrameFiles = std::map<std::string, std::string>;
+
+// Every frame a run wrote meshes for, by frame number. Throws InputError when RUN_DIR/frames is
+// missing or holds no frame mesh.
+std::map<int, FrameFiles> read_frame_files(const std::string& run_dir);
 
 class RunOutput {
  public:
