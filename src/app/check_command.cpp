@@ -35,10 +35,7 @@ struct TriangleSoup {
 
 TriangleSoup read_soup(const std::string& path) {
   const MeshSource source = read_obj_source(path, false);
-  TriangleSoup s;
-  s.positions = source.positions;
-  for (const auto& f : source.faces) s.faces.push_back({f[0].node, f[1].node, f[2].node});
-  return s;
+  return {position_triangles(source), source.positions};
 }
 
 }  // namespace

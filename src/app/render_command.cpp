@@ -98,7 +98,7 @@ LoadedFrame load_frame(const FrameFiles& files) {
     const MeshSource source = read_obj_source(path, false);
     RenderMesh mesh;
     mesh.positions = source.positions;
-    for (const auto& face : source.faces) mesh.faces.push_back({face[0].node, face[1].node, face[2].node});
+    mesh.faces = position_triangles(source);
     mesh.colour = cloth ? kClothPalette[garments++ % std::size(kClothPalette)] : Vec3(0.78, 0.74, 0.70);
     f.meshes.push_back(std::move(mesh));
     f.cloth.push_back(cloth);

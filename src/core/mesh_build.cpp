@@ -128,6 +128,13 @@ MeshSource mesh_source(const Mesh& mesh) {
   return src;
 }
 
+std::vector<std::array<int32_t, 3>> position_triangles(const MeshSource& source) {
+  std::vector<std::array<int32_t, 3>> faces;
+  faces.reserve(source.faces.size());
+  for (const auto& f : source.faces) faces.push_back({f[0].node, f[1].node, f[2].node});
+  return faces;
+}
+
 MeshSource make_grid(double size_x, double size_y, int nx, int ny) {
   MeshSource src;
   for (int j = 0; j <= ny; ++j)

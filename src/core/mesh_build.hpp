@@ -41,6 +41,10 @@ MeshSource mesh_source(const Mesh& mesh);
 // (u, 0, -v), so the outer side faces +y.
 MeshSource make_grid(double size_x, double size_y, int nx, int ny);
 
+// The faces of a source as triples of position indices (its world-space triangles), for the
+// checks and drawings that need no material space.
+std::vector<std::array<int32_t, 3>> position_triangles(const MeshSource& source);
+
 // A closed sphere of the given radius centred at the origin: an icosahedron subdivided
 // `subdivisions` times, outward-facing. Obstacles have no pattern: every face gets the same
 // canonical material triangle (see with_canonical_uvs).

@@ -127,8 +127,7 @@ TEST(Untangle, MoreIterationsNeverEndWorseInACrease) {
   std::vector<std::vector<Vec3>> sphere_x;
   for (const double side : {-1.0, 1.0}) {
     const MeshSource ball = make_icosphere(0.05, 2);
-    CollisionMesh m;
-    for (const auto& f : ball.faces) m.faces.push_back({f[0].node, f[1].node, f[2].node});
+    CollisionMesh m{position_triangles(ball)};
     std::vector<Vec3> x;
     const double dz = 0.01 * jitter(rng);
     for (const Vec3& p : ball.positions) x.push_back(p + Vec3(0.04 * side, -0.05, dz));
