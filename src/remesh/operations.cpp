@@ -22,6 +22,8 @@ bool good_material_face(const Mesh& mesh, VertId a, VertId b, VertId c) {
   return 0.5 * signed_area2(ua, ub, uc) > kMinRelativeArea * l2;
 }
 
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
 Vec3 world_normal_of(const Mesh& mesh, VertId a, VertId b, VertId c) {
   return area_normal(mesh.x(mesh.vert_node(a)), mesh.x(mesh.vert_node(b)), mesh.x(mesh.vert_node(c)));
 }
@@ -129,20 +131,13 @@ OpRecord flip_edge(Mesh& mesh, EdgeId e) {
 
 namespace {
 
-bool is_boundary_node(const Mesh& mesh, NodeId n) {
-  for (EdgeId e : mesh.node_edges(n))
-    if (mesh.is_boundary(e)) return true;
-  return false;
-}
-
-// Faces around the removed node rewritten onto the kept vert; faces that contain both ends
-// (those of e) disappear.
+// Faces around the removed node rewritten onto the kept node's vert in the same panel; faces
+// that contain both ends (those of e) disappear.
 std::vector<NewFace> collapsed_faces(const Mesh& mesh, EdgeId e, int remove, std::vector<FaceId>& old_faces) {
   const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
-  const int side = mesh.edge_face(e, 0).valid() ? 0 : 1;
-  const VertId vk = mesh.edge_vert(e, side, 1 - remove);
   std::vector<NewFace> out;
-  for (VertId vr : mesh.node_verts(r))
+  for (VertId vr : mesh.node_verts(r)) {
+    const VertId vk = collapse_target(mesh, e, remove, vr);
     for (FaceId f : mesh.vert_faces(vr)) {
       old_faces.push_back(f);
       auto vs = mesh.face_verts(f);
@@ -153,35 +148,56 @@ std::vector<NewFace> collapsed_faces(const Mesh& mesh, EdgeId e, int remove, std
         if (v == vr) v = vk;
       out.push_back({vs, f});
     }
+  }
   return out;
+}
+
+// A node on the pattern's border (a boundary or a seam) may only slide along it: it has exactly
+// two border edges, of one kind, e is one of them, it joins at most two panels, and in each
+// panel the border runs on through it nearly straight: its distance from the chord joining its
+// two border neighbours is at most border_sag times that chord (round-off when 0).
+bool border_allows_collapse(const Mesh& mesh, EdgeId e, NodeId r, double border_sag) {
+  std::vector<EdgeId> border;
+  for (EdgeId b : mesh.node_edges(r))
+    if (mesh.is_boundary(b) || mesh.is_seam(b)) border.push_back(b);
+  if (border.empty()) return mesh.node_verts(r).size() == 1;
+  if (border.size() != 2 || (border[0] != e && border[1] != e)) return false;
+  if (mesh.is_seam(border[0]) != mesh.is_seam(border[1]) || mesh.node_verts(r).size() > 2) return false;
+  const double tolerance = std::max(border_sag, 1e-9);
+  for (VertId vr : mesh.node_verts(r)) {
+    Vec2 d[2];
+    for (int i = 0; i < 2; ++i) {
+      const NodeId n = mesh.edge_node(border[i], 0) == r ? mesh.edge_node(border[i], 1) : mesh.edge_node(border[i], 0);
+      const VertId vn = vert_beside(mesh, vr, n);
+      if (!vn.valid()) return false;
+      d[i] = mesh.u(vn) - mesh.u(vr);
+    }
+    if (d[0].dot(d[1]) >= 0) return false;
+    if (std::abs(cross2(d[0], d[1])) > tolerance * (d[1] - d[0]).squaredNorm()) return false;
+  }
+  return true;
 }
 
 }  // namespace
 
-bool can_collapse(const Mesh& mesh, EdgeId e, int remove) {
+VertId vert_beside(const Mesh& mesh, VertId v, NodeId n) {
+  for (FaceId f : mesh.vert_faces(v))
+    for (VertId w : mesh.face_verts(f))
+      if (mesh.vert_node(w) == n) return w;
+  return VertId();
+}
+
+VertId collapse_target(const Mesh& mesh, EdgeId e, int remove, VertId vr) {
+  return vert_beside(mesh, vr, mesh.edge_node(e, 1 - remove));
+}
+
+bool can_collapse(const Mesh& mesh, EdgeId e, int remove, double border_sag) {
   if (!mesh.alive(e) || (remove != 0 && remove != 1)) return false;
   const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
   if (mesh.flags(r) & kNodeHandle) return false;
-  if (mesh.node_verts(r).size() != 1) return false;  // seam nodes stay
-  if (mesh.is_seam(e)) return false;
-  if (is_boundary_node(mesh, r)) {
-    if (!mesh.is_boundary(e)) return false;
-    // Only along a straight boundary: r's two boundary edges must be collinear in material space.
-    std::vector<NodeId> ends;
-    for (EdgeId b : mesh.node_edges(r))
-      if (mesh.is_boundary(b)) ends.push_back(mesh.edge_node(b, 0) == r ? mesh.edge_node(b, 1) : mesh.edge_node(b, 0));
-    if (ends.size() != 2) return false;
-    const VertId vr = mesh.node_verts(r).front();
-    auto u_of = [&](NodeId n) {
-      // The vert of n next to r: the one sharing a face with r's vert.
-      for (FaceId f : mesh.vert_faces(vr))
-        for (VertId v : mesh.face_verts(f))
-          if (mesh.vert_node(v) == n) return mesh.u(v);
-      return mesh.u(mesh.node_verts(n).front());
-    };
-    const Vec2 a = u_of(ends[0]) - mesh.u(vr), b = u_of(ends[1]) - mesh.u(vr);
-    if (std::abs(a.x() * b.y() - a.y() * b.x()) > 1e-9 * a.norm() * b.norm() || a.dot(b) >= 0) return false;
-  }
+  if (!border_allows_collapse(mesh, e, r, border_sag)) return false;
+  for (VertId vr : mesh.node_verts(r))
+    if (!collapse_target(mesh, e, remove, vr).valid()) return false;
   // Link condition: the only common neighbours of r and k are the opposite nodes of e.
   std::vector<int32_t> nr, nk;
   for (EdgeId x : mesh.node_edges(r)) nr.push_back((mesh.edge_node(x, 0) == r ? mesh.edge_node(x, 1) : mesh.edge_node(x, 0)).idx);
@@ -203,11 +219,11 @@ bool can_collapse(const Mesh& mesh, EdgeId e, int remove) {
   return true;
 }
 
-OpRecord collapse_edge(Mesh& mesh, EdgeId e, int remove) {
-  if (!can_collapse(mesh, e, remove)) throw std::logic_error("collapse_edge: collapse not allowed");
+OpRecord collapse_edge(Mesh& mesh, EdgeId e, int remove, double border_sag) {
+  if (!can_collapse(mesh, e, remove, border_sag)) throw std::logic_error("collapse_edge: collapse not allowed");
   OpRecord rec;
   const NodeId r = mesh.edge_node(e, remove);
-  const VertId vr = mesh.node_verts(r).front();
+  const std::vector<VertId> removed_verts = mesh.node_verts(r);
   const NodeId k = mesh.edge_node(e, 1 - remove);
   std::vector<FaceId> old_faces;
   std::vector<NewFace> new_faces = collapsed_faces(mesh, e, remove, old_faces);
@@ -218,9 +234,11 @@ OpRecord collapse_edge(Mesh& mesh, EdgeId e, int remove) {
     if (other != k) moved.emplace(key(k, other), x);
   }
   replace_faces(mesh, old_faces, new_faces, moved, rec);
-  mesh.remove_vert(vr);
+  for (VertId vr : removed_verts) {
+    mesh.remove_vert(vr);
+    rec.removed_verts.push_back(vr);
+  }
   mesh.remove_node(r);
-  rec.removed_verts.push_back(vr);
   rec.removed_nodes.push_back(r);
   return rec;
 }

@@ -1,7 +1,8 @@
 // Local topology operations of adaptive remeshing (Narain et al. 2012, section 4): edge split,
 // edge flip and edge collapse. Each has a can_* check; each returns what it added and removed,
-// keeps boundaries, seams and handle nodes, carries attributes over and never inverts a face
-// in material or world space.
+// keeps handle nodes and the pattern's corners, moves border nodes (boundary or seam) only
+// along their border, carries attributes over and never inverts a face in material or world
+// space.
 #pragma once
 #include <vector>
 
@@ -29,12 +30,20 @@ OpRecord split_edge(Mesh& mesh, EdgeId e, double t = 0.5);
 bool can_flip(const Mesh& mesh, EdgeId e);
 OpRecord flip_edge(Mesh& mesh, EdgeId e);
 
-// Removes node edge_node(e, remove) by moving it onto the other end. Refused when the removed
-// node is a handle, lies on a seam or is a boundary corner, when it is on the boundary but e is
-// not, when the link condition fails (the ends share a neighbour other than the opposite
-// nodes of e), or when a new face would be inverted or degenerate in material space or flip
-// its world normal.
-bool can_collapse(const Mesh& mesh, EdgeId e, int remove);
-OpRecord collapse_edge(Mesh& mesh, EdgeId e, int remove);
+// Removes node edge_node(e, remove) by moving it onto the other end; on a seam, each of its
+// verts merges into the other end's vert in the same panel. Refused when the removed node is a
+// handle; when it is on the pattern's border (a boundary or a seam) but e is not a border edge,
+// or it is a corner there (other than two border edges of one kind, or more than two panels), or
+// the border bends through it: its distance from the chord between its border neighbours above
+// `border_sag` times that chord, in any of its panels (0: straight to round-off); when the
+// link condition fails (the ends share a neighbour other than the opposite nodes of e); or when a
+// new face would be inverted or degenerate in material space or flip its world normal.
+bool can_collapse(const Mesh& mesh, EdgeId e, int remove, double border_sag = 0);
+OpRecord collapse_edge(Mesh& mesh, EdgeId e, int remove, double border_sag = 0);
+
+// The vert of node n that shares a face with vert v (n's vert in v's panel), or invalid.
+VertId vert_beside(const Mesh& mesh, VertId v, NodeId n);
+// The vert that vert vr of the removed node merges into when e collapses.
+VertId collapse_target(const Mesh& mesh, EdgeId e, int remove, VertId vr);
 
 }  // namespace vdc

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace vdc {
 
@@ -69,13 +70,14 @@ int split_all(Mesh& mesh, const RemeshOptions& o) {
 // Largest s^2 among the edges that collapsing e (removing end `remove`) would create.
 double collapse_worst(const Mesh& mesh, EdgeId e, int remove) {
   const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
-  const int side = mesh.edge_face(e, 0).valid() ? 0 : 1;
-  const VertId vk = mesh.edge_vert(e, side, 1 - remove);
   double worst = 0;
-  for (VertId vr : mesh.node_verts(r))
+  for (VertId vr : mesh.node_verts(r)) {
+    const VertId vk = collapse_target(mesh, e, remove, vr);
+    if (!vk.valid()) return std::numeric_limits<double>::infinity();
     for (FaceId f : mesh.vert_faces(vr))
       for (VertId w : mesh.face_verts(f))
         if (mesh.vert_node(w) != r && mesh.vert_node(w) != k) worst = std::max(worst, size2(mesh, vk, w));
+  }
   return worst;
 }
 
@@ -96,9 +98,9 @@ int collapse_all(Mesh& mesh, const RemeshOptions& o) {
     for (const auto& [s2, e] : candidates) {
       if (!mesh.alive(e)) continue;
       for (int remove = 0; remove < 2; ++remove) {
-        if (collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove)) continue;
+        if (collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove, o.border_sag)) continue;
         const NodeId kept = mesh.edge_node(e, 1 - remove);
-        collapse_edge(mesh, e, remove);
+        collapse_edge(mesh, e, remove, o.border_sag);
         ++collapses;
         changed.push_back(kept);
         break;

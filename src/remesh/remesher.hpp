@@ -14,6 +14,10 @@ struct RemeshOptions {
   double collapse_margin = 0.2;   // a collapse may not create an edge with s^2 > 1 - margin
   double flip_threshold = 1e-3;   // flip only when the Delaunay test fails by more than this
   int max_passes = 20;            // bound on split and flip sweeps
+  // A node on a curved border (hem, neckline, a seam along an arc) may be collapsed when it lies
+  // within this fraction of the chord that replaces it (can_collapse): 0.025 lets a border
+  // coarsen to chords of a fifth of its radius of curvature, moving it by 0.5% of a chord.
+  double border_sag = 0.025;
 };
 
 struct RemeshStats {

@@ -2,11 +2,15 @@
 // random sequence of all three that must keep every invariant.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <map>
+#include <string>
+#include <tuple>
 #include <random>
 
 #include "core/mesh_build.hpp"
 #include "remesh/operations.hpp"
+#include "scene/garments.hpp"
 
 namespace vdc {
 namespace {
@@ -156,6 +160,55 @@ TEST(Collapse, RefusesHandlesCornersAndBoundaryNodesOffTheBoundary) {
   }
 }
 
+// 400 random splits, flips and collapses on m: every one keeps the mesh valid, material area
+// (borders are straight), positive faces and node attributes with their nodes; returns the
+// counts of splits, flips, collapses and collapses along a seam done.
+std::array<int, 4> random_operations(Mesh& m, std::mt19937& rng, const std::string& what) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  auto& uid = m.node_attrs().add<int>("uid", -1);
+  std::map<int, Vec3> position_of;  // uid -> position when created
+  int next = 0;
+  for (NodeId n : m.nodes()) {
+    uid[n] = next;
+    position_of[next++] = m.x(n);
+  }
+  const double area = material_area(m);
+  std::array<int, 4> done{0, 0, 0, 0};
+  const bool failed_before = ::testing::Test::HasFailure();
+  for (int op = 0; op < 400; ++op) {
+    std::vector<EdgeId> edges, seams;
+    for (EdgeId e : m.edges()) (m.is_seam(e) ? seams : edges).push_back(e);
+    // Seams are few: half the picks go to them, when there are any.
+    const std::vector<EdgeId>& pool = !seams.empty() && rng() % 2 ? seams : edges;
+    EdgeId e = pool[rng() % pool.size()];
+    int kind = static_cast<int>(rng() % 3);
+    if (kind == 0 && m.num_faces() < 600) {
+      OpRecord r = split_edge(m, e, 0.3 + 0.4 * (U(rng) + 1) / 2);
+      uid[r.added_nodes[0]] = next;
+      position_of[next++] = m.x(r.added_nodes[0]);
+      ++done[0];
+    } else if (kind == 1 && can_flip(m, e)) {
+      flip_edge(m, e);
+      ++done[1];
+    } else if (kind == 2) {
+      int remove = static_cast<int>(rng() % 2);
+      if (can_collapse(m, e, remove)) {
+        done[3] += m.is_seam(e);
+        collapse_edge(m, e, remove);
+        ++done[2];
+      }
+    }
+    ValidationReport v = m.validate();
+    EXPECT_TRUE(v.ok()) << what << " op " << op << "\n" << v.summary();
+    EXPECT_NEAR(material_area(m), area, 1e-12 * area) << what << " op " << op;
+    for (FaceId f : m.faces()) EXPECT_GT(m.material_area(f), 0) << what << " op " << op;
+    if (op % 50 == 49) m.compact();
+    for (NodeId n : m.nodes()) EXPECT_EQ(m.x(n), position_of.at(uid[n])) << what << ": node attributes lost their node";
+    if (!failed_before && ::testing::Test::HasFailure()) break;
+  }
+  return done;
+}
+
 TEST(Operations, RandomSequencesKeepEveryInvariant) {
   std::mt19937 rng(99);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
@@ -169,45 +222,101 @@ TEST(Operations, RandomSequencesKeepEveryInvariant) {
       src.positions[i] = Vec3(u.x(), 0.05 * std::sin(4 * u.x() + trial), -u.y());
     }
     Mesh m = build_mesh(src);
-    auto& uid = m.node_attrs().add<int>("uid", -1);
-    std::map<int, Vec3> position_of;  // uid -> position when created
-    int next = 0;
-    for (NodeId n : m.nodes()) {
-      uid[n] = next;
-      position_of[next++] = m.x(n);
-    }
-    const double area = material_area(m);
-    int splits = 0, flips = 0, collapses = 0;
-    for (int op = 0; op < 400; ++op) {
-      std::vector<EdgeId> edges;
-      for (EdgeId e : m.edges()) edges.push_back(e);
-      EdgeId e = edges[rng() % edges.size()];
-      int kind = static_cast<int>(rng() % 3);
-      if (kind == 0 && m.num_faces() < 600) {
-        OpRecord r = split_edge(m, e, 0.3 + 0.4 * (U(rng) + 1) / 2);
-        uid[r.added_nodes[0]] = next;
-        position_of[next++] = m.x(r.added_nodes[0]);
-        ++splits;
-      } else if (kind == 1 && can_flip(m, e)) {
-        flip_edge(m, e);
-        ++flips;
-      } else if (kind == 2) {
-        int remove = static_cast<int>(rng() % 2);
-        if (can_collapse(m, e, remove)) {
-          collapse_edge(m, e, remove);
-          ++collapses;
-        }
-      }
-      ValidationReport v = m.validate();
-      ASSERT_TRUE(v.ok()) << "trial " << trial << " op " << op << "\n" << v.summary();
-      ASSERT_NEAR(material_area(m), area, 1e-12 * area) << "trial " << trial << " op " << op;
-      for (FaceId f : m.faces()) ASSERT_GT(m.material_area(f), 0);
-      if (op % 50 == 49) m.compact();
-      for (NodeId n : m.nodes()) ASSERT_EQ(m.x(n), position_of.at(uid[n])) << "node attributes lost their node";
-    }
+    const auto [splits, flips, collapses, seam_collapses] = random_operations(m, rng, "grid trial " + std::to_string(trial));
     EXPECT_GT(splits, 50);
     EXPECT_GT(flips, 10);
     EXPECT_GT(collapses, 10);
+    EXPECT_EQ(seam_collapses, 0);
+  }
+}
+
+int count_seam_edges(const Mesh& m) {
+  int n = 0;
+  for (EdgeId e : m.edges()) n += m.is_seam(e);
+  return n;
+}
+
+TEST(Operations, RandomSequencesOnASewnTubeKeepEveryInvariantAndTheSeamClosed) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 3; ++trial) {
+    Mesh m = build_mesh(make_tube({12, 1.0, 0.2, 0.4, 0.2, 0.1}));
+    const auto [splits, flips, collapses, seam_collapses] = random_operations(m, rng, "tube trial " + std::to_string(trial));
+    EXPECT_GT(splits, 50);
+    EXPECT_GT(collapses, 10);
+    EXPECT_GT(seam_collapses, 2);
+    // Still one closed tube: the seam runs the full height, nodes on it have a vert each side.
+    EXPECT_GE(count_seam_edges(m), 1);
+    for (NodeId n : m.nodes()) EXPECT_LE(m.node_verts(n).size(), 2u);
+    EXPECT_EQ(m.validate().ok(), true);
+  }
+}
+
+// The nodes of a straight cylinder's back seam strictly between its two rims.
+std::vector<NodeId> inner_seam_nodes(const Mesh& m) {
+  std::vector<NodeId> out;
+  for (NodeId n : m.nodes()) {
+    if (m.node_verts(n).size() != 2) continue;
+    bool rim = false;
+    for (EdgeId e : m.node_edges(n)) rim = rim || m.is_boundary(e);
+    if (!rim) out.push_back(n);
+  }
+  return out;
+}
+
+TEST(Collapse, SeamNodeSlidesAlongTheSeamMergingBothOfItsVerts) {
+  Mesh m = build_mesh(make_tube({12, 1.0, 0.2, 0.4, 0.2, 0.1}));
+  const std::vector<NodeId> seam = inner_seam_nodes(m);
+  ASSERT_GE(seam.size(), 3u);
+  const NodeId r = seam[1];
+  int seams_at_r = 0;
+  for (EdgeId e : m.node_edges(r)) {
+    const int remove = m.edge_node(e, 0) == r ? 0 : 1;
+    // Off the seam it stays; along the seam it may go.
+    EXPECT_EQ(can_collapse(m, e, remove), m.is_seam(e)) << "edge to node " << m.edge_node(e, 1 - remove).idx;
+    seams_at_r += m.is_seam(e);
+  }
+  ASSERT_EQ(seams_at_r, 2);
+  EdgeId along;
+  for (EdgeId e : m.node_edges(r))
+    if (m.is_seam(e)) along = e;
+  const int faces = m.num_faces(), verts = m.num_verts(), nodes = m.num_nodes(), seam_edges = count_seam_edges(m);
+  const double area = material_area(m);
+  OpRecord rec = collapse_edge(m, along, m.edge_node(along, 0) == r ? 0 : 1);
+  expect_valid(m);
+  EXPECT_EQ(m.num_nodes(), nodes - 1);
+  EXPECT_EQ(m.num_verts(), verts - 2);
+  EXPECT_EQ(m.num_faces(), faces - 2);
+  EXPECT_EQ(rec.removed_verts.size(), 2u);
+  EXPECT_EQ(count_seam_edges(m), seam_edges - 1);
+  EXPECT_NEAR(material_area(m), area, 1e-12 * area);
+}
+
+TEST(Collapse, SeamEndsStay) {
+  Mesh m = build_mesh(make_tube({12, 1.0, 0.2, 0.4, 0.2, 0.1}));
+  int ends = 0;
+  for (NodeId n : m.nodes()) {
+    if (m.node_verts(n).size() != 2) continue;
+    bool rim = false;
+    for (EdgeId e : m.node_edges(n)) rim = rim || m.is_boundary(e);
+    if (!rim) continue;
+    ++ends;
+    for (EdgeId e : m.node_edges(n)) EXPECT_FALSE(can_collapse(m, e, m.edge_node(e, 0) == n ? 0 : 1, 0.5));
+  }
+  EXPECT_EQ(ends, 2);
+}
+
+TEST(Collapse, CurvedBoundaryNodeGoesOnlyWithinTheSagBound) {
+  // Node 2, mid-way along the bottom of a 4 x 4 grid, pushed out of the line by d: its border
+  // neighbours are 0.5 apart, so it lies d / 0.5 of the chord from it.
+  for (const auto& [d, border_sag, allowed] : std::vector<std::tuple<double, double, bool>>{
+           {0.01, 0.025, true}, {0.0124, 0.025, true}, {0.0126, 0.025, false}, {0.01, 0.0, false}, {-0.01, 0.025, true}}) {
+    MeshSource src = make_grid(1, 1, 4, 4);
+    src.uvs[2].y() -= d;
+    Mesh m = build_mesh(src);
+    const NodeId side(2);
+    const EdgeId along = m.find_edge(side, NodeId(1));
+    ASSERT_TRUE(along.valid());
+    EXPECT_EQ(can_collapse(m, along, m.edge_node(along, 0) == side ? 0 : 1, border_sag), allowed) << "d " << d << " sag " << border_sag;
   }
 }
 
