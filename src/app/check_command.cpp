@@ -22,8 +22,9 @@ const char* kCheckHelp =
     "Checks the meshes of RUN_DIR/frames/ (written by `vdcloth run`): at every frame, each garment\n"
     "against itself, every other garment and every obstacle, by the exact triangle-triangle test.\n"
     "Lists each crossing mesh pair with its count of crossing face pairs and writes RUN_DIR/check.csv\n"
-    "(frame, mesh, other mesh, face pairs; one row per crossing pair of meshes). Exit status: 0 no\n"
-    "crossing, 3 crossings found, 2 bad usage or input.\n"
+    "(frame, mesh, other mesh, face pairs; one row per crossing pair of meshes) and\n"
+    "RUN_DIR/check_status.txt (frames checked, frames with crossings, N), which `bench table1` shows.\n"
+    "Exit status: 0 no crossing, 3 crossings found, 2 bad usage or input.\n"
     "\n"
     "options:\n"
     "  --every N   every Nth frame that has meshes (default: 1, all)\n";
@@ -61,14 +62,20 @@ int check_command(const std::vector<std::string>& args, std::ostream& out) {
     }
   }
   if (run.empty()) throw UsageError("check expects RUN_DIR (try vdcloth check --help)");
-  const std::map<int, FrameFiles> frames = read_frame_files(run);
+  const CheckSummary summary = check_run(run, every, out);
+  return summary.frames_with_crossings == 0 ? kExitOk : kExitSimulationFailed;
+}
 
-  const std::string csv_path = run + "/check.csv";
+CheckSummary check_run(const std::string& run, int every, std::ostream& out) {
+  const std::map<int, FrameFiles> frames = read_frame_files(run);
+  const std::string csv_path = run + "/check.csv", status_path = run + "/check_status.txt";
   std::error_code ec;
+  fs::remove(status_path, ec);
   std::ofstream csv(csv_path + ".partial");
   if (!csv) throw InputError(csv_path + ".partial", "", "cannot write");
   csv << "frame,mesh,other,face_pairs\n";
-  int checked = 0, bad_frames = 0, index = 0;
+  CheckSummary summary;
+  int index = 0;
   for (const auto& [frame, files] : frames) {
     if (index++ % every != 0) continue;
     std::map<std::string, TriangleSoup> meshes;
@@ -91,14 +98,18 @@ int check_command(const std::vector<std::string>& args, std::ostream& out) {
         report(a->first, b->first, count_intersections_between(a->second.faces, a->second.positions, b->second.faces, b->second.positions));
       }
     }
-    ++checked;
-    bad_frames += bad;
+    ++summary.frames_checked;
+    summary.frames_with_crossings += bad;
   }
   csv.close();
   fs::rename(csv_path + ".partial", csv_path, ec);
   if (ec) throw InputError(csv_path, "", "cannot write: " + ec.message());
-  out << "vdcloth check: " << checked << " frame(s) of " << run << ", " << bad_frames << " with crossings; " << csv_path << "\n";
-  return bad_frames == 0 ? kExitOk : kExitSimulationFailed;
+  std::ofstream status(status_path);
+  status << summary.frames_checked << " " << summary.frames_with_crossings << " " << every << "\n";
+  if (!status) throw InputError(status_path, "", "cannot write");
+  out << "vdcloth check: " << summary.frames_checked << " frame(s) of " << run << ", " << summary.frames_with_crossings
+      << " with crossings; " << csv_path << "\n";
+  return summary;
 }
 
 }  // namespace vdc

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/check_command.hpp"
 #include "app/cli.hpp"
 #include "core/error.hpp"
 #include "scene/scene.hpp"
@@ -47,7 +48,9 @@ const char* kTable1Help =
     "  --mode M        run only this mode: fixed, adaptive or view (repeatable; default: all three);\n"
     "                  the tables still show every run found in OUT\n"
     "  --tables-only   run nothing: make the tables from the runs already in OUT\n"
-    "  --mesh-every N  meshes written by each run, as `vdcloth run --mesh-every` (default: 0, none)\n";
+    "  --mesh-every N  meshes written by each run, as `vdcloth run --mesh-every` (default: 0, none);\n"
+    "                  with meshes, each run is checked for crossings at its frame ends (`vdcloth\n"
+    "                  check`) once it is done, and the tables say how many frames had any\n";
 
 struct Table1Args {
   std::optional<int> frames, fixed_frames;
@@ -93,8 +96,21 @@ struct Run {
   long peak_kib = 0;       // its peak resident memory
   double cpu_seconds = 0;  // its user and system CPU time, all threads
   double steal = -1;       // share of the machine's CPU time the hypervisor took meanwhile (-1: unknown)
+  CheckSummary check;      // frame-end crossings of its written meshes (vdcloth check)
+  bool checked = false;    // whether `check` holds a check of this run
   RunTable table;
 };
+
+// The run's frame-end check from RUN/check_status.txt, if one was made.
+void read_check_status(const std::string& dir, Run& r) {
+  std::ifstream status(dir + "/check_status.txt");
+  r.checked = static_cast<bool>(status >> r.check.frames_checked >> r.check.frames_with_crossings);
+}
+
+std::string check_cell(const Run& r) {
+  if (!r.checked) return "";
+  return std::to_string(r.check.frames_with_crossings) + " of " + std::to_string(r.check.frames_checked);
+}
 
 // The machine's CPU time from /proc/stat's first line, in clock ticks: the total (user, nice,
 // system, idle, iowait, irq, softirq, steal) and the steal, time a virtual machine's CPUs were
@@ -157,16 +173,18 @@ const Run* find_run(const std::vector<Run>& runs, const std::string& scene, cons
 void write_tables(const std::vector<Run>& runs, const Table1Args& args, int threads) {
   std::ofstream csv(args.out + "/table1.csv");
   csv << "scene,mode,status,frames,faces_min,faces_max,faces_mean,vertices_min,vertices_max,vertices_mean,"
-         "seconds_min,seconds_max,seconds_mean,speedup_vs_adaptive,speedup_vs_fixed,peak_memory_mib,cpu_seconds_per_frame,steal_percent\n";
+         "seconds_min,seconds_max,seconds_mean,speedup_vs_adaptive,speedup_vs_fixed,peak_memory_mib,cpu_seconds_per_frame,steal_percent,"
+         "frames_checked,frames_with_crossings\n";
   std::ofstream md(args.out + "/table1.md");
   md << "# Table 1 on vdcloth's scenes\n\n"
      << today() << ", " << threads << " thread(s) a run, " << std::thread::hardware_concurrency() << " cores. "
      << "Speed-ups are mean seconds per frame relative to the scene's adaptive and fixed runs. CPU s/frame is the run's "
         "CPU time (all threads) per frame; steal is the share of the machine's CPU time its host took during the run "
-        "(virtual machines), which slows the wall clock.\n\n"
+        "(virtual machines), which slows the wall clock. Crossings: frames whose written meshes have a garment crossing "
+        "itself, another garment or an obstacle (`vdcloth check`), of the frames checked.\n\n"
      << "| scene | mode | frames | faces min / max / mean | vertices min / max / mean | s/frame min / max / mean | "
-        "vs adaptive | vs fixed | peak memory | CPU s/frame | steal |\n"
-     << "| --- | --- | ---: | --- | --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
+        "vs adaptive | vs fixed | peak memory | CPU s/frame | steal | crossings |\n"
+     << "| --- | --- | ---: | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   for (const Run& r : runs) {
     const RunTable& t = r.table;
     const Run* adaptive = find_run(runs, r.scene, "adaptive");
@@ -181,13 +199,15 @@ void write_tables(const std::vector<Run>& runs, const Table1Args& args, int thre
         << fixed_cell(t.vertices_mean, 1) << "," << fixed_cell(t.seconds_min, 4) << "," << fixed_cell(t.seconds_max, 4) << ","
         << fixed_cell(t.seconds_mean, 4) << "," << fixed_cell(speedup(adaptive), 2) << "," << fixed_cell(speedup(fixed), 2) << ","
         << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << "," << fixed_cell(cpu_per_frame, 4) << ","
-        << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1)) << "\n";
+        << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1)) << "," << (r.checked ? std::to_string(r.check.frames_checked) : "") << ","
+        << (r.checked ? std::to_string(r.check.frames_with_crossings) : "") << "\n";
     md << "| " << r.scene << " | " << r.mode << (r.status == 0 ? "" : " (" + status + ")") << " | " << t.frames << " | "
        << t.faces_min << " / " << t.faces_max << " / " << fixed_cell(t.faces_mean, 0) << " | " << t.vertices_min << " / "
        << t.vertices_max << " / " << fixed_cell(t.vertices_mean, 0) << " | " << fixed_cell(t.seconds_min, 3) << " / "
        << fixed_cell(t.seconds_max, 3) << " / " << fixed_cell(t.seconds_mean, 3) << " | " << fixed_cell(speedup(adaptive), 2)
        << "x | " << fixed_cell(speedup(fixed), 2) << "x | " << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << " MiB | "
-       << (cpu_per_frame > 0 ? fixed_cell(cpu_per_frame, 3) : "") << " | " << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1) + "%") << " |\n";
+       << (cpu_per_frame > 0 ? fixed_cell(cpu_per_frame, 3) : "") << " | " << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1) + "%") << " | "
+       << check_cell(r) << " |\n";
   }
   // Per frame, adaptive against view (the data of the seed paper's Figure 5).
   std::vector<std::string> scenes;
@@ -317,6 +337,16 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
         if (after.total > before.total) r.steal = static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total);
         std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
         if (r.status != 0) err << "vdcloth bench table1: " << name << " in " << mode << " mode failed (exit " << r.status << ")" << std::endl;
+        // The frame-end check of its meshes, after the run so it never shares the machine with one.
+        fs::remove(dir + "/check_status.txt", ec);
+        if (r.status == 0 && args.mesh_every > 0) {
+          out << "vdcloth bench table1: checking " << name << ", " << mode << " mode" << std::endl;
+          try {
+            check_run(dir, 1, out);
+          } catch (const InputError& e) {
+            err << "vdcloth bench table1: " << name << " in " << mode << " mode not checked: " << e.what() << std::endl;
+          }
+        }
       } else {
         // status and peak memory, then CPU seconds and steal (absent in older files)
         std::ifstream status(dir + "/run_status.txt");
@@ -327,6 +357,7 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
         }
       }
       if (fs::is_regular_file(dir + "/stats.csv")) r.table = read_run_table(dir + "/stats.csv");
+      read_check_status(dir, r);
       runs.push_back(std::move(r));
       write_tables(runs, args, threads);  // the table so far, in case the session ends early
     }

@@ -234,6 +234,12 @@ TEST_F(CliTest, CheckPassesACleanRunAndListsPlantedCrossings) {
   ASSERT_EQ(run({"check", out_dir()}), kExitOk) << out_.str();
   EXPECT_NE(out_.str().find("3 frame(s)"), std::string::npos) << out_.str();
   EXPECT_NE(out_.str().find("0 with crossings"), std::string::npos) << out_.str();
+  std::ifstream clean_status(fs::path(out_dir()) / "check_status.txt");
+  int checked = -1, crossing = -1, every = -1;
+  clean_status >> checked >> crossing >> every;
+  EXPECT_EQ(checked, 3);
+  EXPECT_EQ(crossing, 0);
+  EXPECT_EQ(every, 1);
   // A planted run: at frame 0 a body stands clear of the sheet, at frame 1 a wall cuts
   // through it.
   const fs::path frames = dir_ / "planted" / "frames";
@@ -254,6 +260,10 @@ TEST_F(CliTest, CheckPassesACleanRunAndListsPlantedCrossings) {
   EXPECT_EQ(header, "frame,mesh,other,face_pairs");
   EXPECT_EQ(row.rfind("1,cloth_s,obstacle_w,", 0), 0u) << row;
   EXPECT_FALSE(std::getline(csv, extra)) << "only frame 1 crosses: " << extra;
+  std::ifstream planted_status(dir_ / "planted" / "check_status.txt");
+  planted_status >> checked >> crossing >> every;
+  EXPECT_EQ(checked, 2);
+  EXPECT_EQ(crossing, 1);
   // Bad inputs.
   EXPECT_EQ(run({"check"}), kExitBadInput);
   EXPECT_EQ(run({"check", (dir_ / "nowhere").string()}), kExitBadInput);
@@ -309,7 +319,7 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
   write("scenes/dancers-10.json", R"({"substeps": 2, "remeshing": {"size": [0.2, 0.5]}, )" + camera + R"("garments": [)" + sheet("a", "one") + ", " +
                                       sheet("b", "two") + "]}");
   const std::string out = (dir_ / "table").string();
-  const std::string command = std::string(VDCLOTH_BINARY) + " bench table1 --scenes " + (dir_ / "scenes").string() + " --frames 2 --threads 1 --out " +
+  const std::string command = std::string(VDCLOTH_BINARY) + " bench table1 --scenes " + (dir_ / "scenes").string() + " --frames 2 --threads 1 --mesh-every 1 --out " +
                               out + " > " + (dir_ / "log.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << std::ifstream(dir_ / "log.txt").rdbuf();
   std::ifstream csv(out + "/table1.csv");
@@ -322,7 +332,9 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
     std::istringstream row(line);
     std::vector<std::string> cells;
     for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), 18u) << line;
+    ASSERT_EQ(cells.size(), 20u) << line;
+    EXPECT_EQ(cells[18], "3") << "frames 0, 1 and 2 checked: " << line;
+    EXPECT_EQ(cells[19], "0") << "no crossings: " << line;
     EXPECT_GT(std::stod(cells[16]), 0) << "CPU seconds a frame: " << line;
     EXPECT_GE(std::stod(cells[17]), 0) << "steal percent: " << line;
     EXPECT_LE(std::stod(cells[17]), 100) << "steal percent: " << line;
@@ -336,7 +348,10 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
     }
   }
   EXPECT_EQ(rows, 9);
-  EXPECT_TRUE(fs::exists(out + "/table1.md"));
+  std::ifstream md(out + "/table1.md");
+  int clean_rows = 0;
+  for (std::string l; std::getline(md, l);) clean_rows += l.find("| 0 of 3 |") != std::string::npos;
+  EXPECT_EQ(clean_rows, 9) << "every run checked, none crossing";
   for (const std::string name : {"karate", "solo-dancer", "dancers-10"}) {
     std::ifstream frames(out + "/table1_" + name + "_frames.csv");
     int n = 0;
