@@ -16,7 +16,8 @@ struct RemeshOptions {
   int max_passes = 20;            // bound on split and flip sweeps
   // A node on a curved border (hem, neckline, a seam along an arc) may be collapsed when it lies
   // within this fraction of the chord that replaces it (can_collapse): 0.025 lets a border
-  // coarsen to chords of a fifth of its radius of curvature, moving it by 0.5% of a chord.
+  // coarsen to chords of a fifth of its radius of curvature, moving it by at most 2.5% of a chord
+  // (0.5% of that radius).
   double border_sag = 0.025;
 };
 
