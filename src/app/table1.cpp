@@ -96,20 +96,21 @@ struct Run {
   long peak_kib = 0;       // its peak resident memory
   double cpu_seconds = 0;  // its user and system CPU time, all threads
   double steal = -1;       // share of the machine's CPU time the hypervisor took meanwhile (-1: unknown)
-  CheckSummary check;      // frame-end crossings of its written meshes (vdcloth check)
-  bool checked = false;    // whether `check` holds a check of this run
+  std::optional<CheckSummary> check;  // frame-end crossings of its written meshes, if checked
   RunTable table;
 };
 
 // The run's frame-end check from RUN/check_status.txt, if one was made.
 void read_check_status(const std::string& dir, Run& r) {
   std::ifstream status(dir + "/check_status.txt");
-  r.checked = static_cast<bool>(status >> r.check.frames_checked >> r.check.frames_with_crossings);
+  CheckSummary c;
+  if (status >> c.frames_checked >> c.frames_with_crossings) r.check = c;
+  else r.check.reset();
 }
 
 std::string check_cell(const Run& r) {
-  if (!r.checked) return "";
-  return std::to_string(r.check.frames_with_crossings) + " of " + std::to_string(r.check.frames_checked);
+  if (!r.check) return "";
+  return std::to_string(r.check->frames_with_crossings) + " of " + std::to_string(r.check->frames_checked);
 }
 
 // The machine's CPU time from /proc/stat's first line, in clock ticks: the total (user, nice,
@@ -199,8 +200,8 @@ void write_tables(const std::vector<Run>& runs, const Table1Args& args, int thre
         << fixed_cell(t.vertices_mean, 1) << "," << fixed_cell(t.seconds_min, 4) << "," << fixed_cell(t.seconds_max, 4) << ","
         << fixed_cell(t.seconds_mean, 4) << "," << fixed_cell(speedup(adaptive), 2) << "," << fixed_cell(speedup(fixed), 2) << ","
         << fixed_cell(static_cast<double>(r.peak_kib) / 1024, 0) << "," << fixed_cell(cpu_per_frame, 4) << ","
-        << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1)) << "," << (r.checked ? std::to_string(r.check.frames_checked) : "") << ","
-        << (r.checked ? std::to_string(r.check.frames_with_crossings) : "") << "\n";
+        << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1)) << "," << (r.check ? std::to_string(r.check->frames_checked) : "") << ","
+        << (r.check ? std::to_string(r.check->frames_with_crossings) : "") << "\n";
     md << "| " << r.scene << " | " << r.mode << (r.status == 0 ? "" : " (" + status + ")") << " | " << t.frames << " | "
        << t.faces_min << " / " << t.faces_max << " / " << fixed_cell(t.faces_mean, 0) << " | " << t.vertices_min << " / "
        << t.vertices_max << " / " << fixed_cell(t.vertices_mean, 0) << " | " << fixed_cell(t.seconds_min, 3) << " / "
