@@ -251,15 +251,17 @@ TEST(Operations, RandomSequencesOnASewnTubeKeepEveryInvariantAndTheSeamClosed) {
   }
 }
 
+bool on_rim(const Mesh& m, NodeId n) {
+  for (EdgeId e : m.node_edges(n))
+    if (m.is_boundary(e)) return true;
+  return false;
+}
+
 // The nodes of a straight cylinder's back seam strictly between its two rims.
 std::vector<NodeId> inner_seam_nodes(const Mesh& m) {
   std::vector<NodeId> out;
-  for (NodeId n : m.nodes()) {
-    if (m.node_verts(n).size() != 2) continue;
-    bool rim = false;
-    for (EdgeId e : m.node_edges(n)) rim = rim || m.is_boundary(e);
-    if (!rim) out.push_back(n);
-  }
+  for (NodeId n : m.nodes())
+    if (m.node_verts(n).size() == 2 && !on_rim(m, n)) out.push_back(n);
   return out;
 }
 
@@ -295,10 +297,7 @@ TEST(Collapse, SeamEndsStay) {
   Mesh m = build_mesh(make_tube({12, 1.0, 0.2, 0.4, 0.2, 0.1}));
   int ends = 0;
   for (NodeId n : m.nodes()) {
-    if (m.node_verts(n).size() != 2) continue;
-    bool rim = false;
-    for (EdgeId e : m.node_edges(n)) rim = rim || m.is_boundary(e);
-    if (!rim) continue;
+    if (m.node_verts(n).size() != 2 || !on_rim(m, n)) continue;
     ++ends;
     for (EdgeId e : m.node_edges(n)) EXPECT_FALSE(can_collapse(m, e, m.edge_node(e, 0) == n ? 0 : 1, 0.5));
   }
