@@ -6,12 +6,14 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <optional>
 #include <sstream>
 #include <thread>
 
 #include "core/error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
 #include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
@@ -19,6 +21,8 @@
 namespace vdc {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 const char* kMainHelp =
     "vdcloth: view-dependent adaptive cloth simulation\n"
@@ -38,7 +42,7 @@ const char* kMainHelp =
 
 const char* kRunHelp =
     "usage: vdcloth run SCENE.json [--mode fixed|adaptive|view] [--frames N] [--out DIR] [--threads N]\n"
-    "                  [--mesh-every N]\n"
+    "                  [--mesh-every N] [--checkpoint-every N] [--resume]\n"
     "\n"
     "Simulates SCENE.json and writes DIR/stats.csv (one row a frame), DIR/frames/ (one OBJ per garment\n"
     "and obstacle per frame: cloth_<name>.<frame>.obj, obstacle_<name>.<frame>.obj, frame 0000 is the\n"
@@ -51,6 +55,10 @@ const char* kRunHelp =
     "  --out DIR     output directory (default: out/<scene name>)\n"
     "  --threads N   worker threads (default: all cores)\n"
     "  --mesh-every N  write the meshes of frames 0, N, 2N, ... only; 0: none (default: 1, every frame)\n"
+    "  --checkpoint-every N  keep DIR/checkpoint.bin at frames N, 2N, ... and the last; 0: none\n"
+    "                (default: 10)\n"
+    "  --resume      go on with the run in DIR from its checkpoint, as if it had never stopped: same\n"
+    "                scene file and mode; --frames may give a later end than the first run's\n"
     "  --help        this text\n";
 
 struct RunArgs {
@@ -60,6 +68,8 @@ struct RunArgs {
   std::string out;
   int threads = 0;
   int mesh_every = 1;  // write meshes at frames that are multiples of this; 0: none
+  int checkpoint_every = 10;  // checkpoint at frames that are multiples of this, and the last; 0: none
+  bool resume = false;
 };
 
 }  // namespace
@@ -100,6 +110,11 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
     } else if (a == "--mesh-every") {
       const std::string& v = value();
       r.mesh_every = v == "0" ? 0 : parse_positive_int(a, v);
+    } else if (a == "--checkpoint-every") {
+      const std::string& v = value();
+      r.checkpoint_every = v == "0" ? 0 : parse_positive_int(a, v);
+    } else if (a == "--resume") {
+      r.resume = true;
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "'");
     } else if (r.scene.empty()) {
@@ -121,12 +136,33 @@ std::string format_duration(double s) {
   return o.str();
 }
 
+// The checkpoint of the run in `dir` to resume, checked against the scene file and mode.
+Checkpoint checkpoint_to_resume(const std::string& dir, const std::string& scene_path, SimMode mode) {
+  const std::string path = dir + "/" + kCheckpointFile;
+  if (!fs::is_regular_file(path))
+    throw InputError(path, "", "no checkpoint to resume from (the run was made with --checkpoint-every 0, or stopped before its first)");
+  Checkpoint c = read_checkpoint(path);
+  if (c.scene_hash != file_hash(scene_path))
+    throw InputError(path, "", "made from another version of " + scene_path + ": run without --resume to start again");
+  if (c.mode != sim_mode_name(mode))
+    throw UsageError("--resume: the run in " + dir + " is in " + c.mode + " mode, not " + sim_mode_name(mode));
+  return c;
+}
+
 int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool interactive) {
   Scene scene = load_scene(args.scene);
   if (args.frames) scene.frames = *args.frames;
   const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::string dir = args.out.empty() ? "out/" + scene.name : args.out;
   const int frames = scene.frames;
+  const uint64_t scene_hash = args.checkpoint_every > 0 || args.resume ? file_hash(args.scene) : 0;
+  std::optional<Checkpoint> resume;
+  if (args.resume) {
+    resume = checkpoint_to_resume(dir, args.scene, args.mode);
+    if (resume->frame > frames)
+      throw UsageError("--resume: the run in " + dir + " is at frame " + std::to_string(resume->frame) + ", past the " +
+                       std::to_string(frames) + " frames asked for");
+  }
 
   bool line_open = false;
   auto log = [&](const std::string& msg) {
@@ -134,22 +170,37 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     line_open = false;
     err << "vdcloth: " << msg << std::endl;
   };
-  Ensemble sim(std::move(scene), SimOptions{args.mode, threads}, log);
-  RunOutput output(dir);
-  if (args.mesh_every > 0) output.write_frame(sim, 0);
-  out << "vdcloth: " << sim.name() << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", "
-      << threads << " thread(s), " << sim.num_faces() << " faces, output " << dir << std::endl;
+  const SimOptions options{args.mode, threads};
+  const int segments = resume ? resume->segments + 1 : 1;
+  const ResourceUsage before = resume ? resume->usage : ResourceUsage{};
+  const CpuTicks ticks_at_start = machine_ticks();
+  Ensemble sim = resume ? Ensemble(std::move(scene), options, log, std::move(resume->parts), dir + "/" + kCheckpointFile)
+                        : Ensemble(std::move(scene), options, log);
+  RunOutput output = resume ? RunOutput(dir, resume->frame) : RunOutput(dir);
+  const int first = sim.frame();
+  if (args.mesh_every > 0 && !resume) output.write_frame(sim, 0);
+  out << "vdcloth: " << sim.name() << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", " << threads
+      << " thread(s), " << sim.num_faces() << " faces, output " << dir;
+  if (resume) out << ", resumed at frame " << first;
+  out << std::endl;
 
   auto t0 = std::chrono::steady_clock::now();
-  int done = 0;
+  auto usage = [&] {
+    return process_usage(before, ticks_at_start, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  };
+  int done = first;
   try {
-    for (int f = 0; f < frames; ++f) {
+    while (done < frames) {
       FrameStats s = sim.step_frame();
       if (args.mesh_every > 0 && s.frame % args.mesh_every == 0) output.write_frame(sim, s.frame);
       output.write_stats_row(s);
       done = s.frame;
+      if (args.checkpoint_every > 0 && (done % args.checkpoint_every == 0 || done == frames)) {
+        sim.restart_solvers();
+        write_checkpoint(dir + "/" + kCheckpointFile, sim, scene_hash, segments, usage());
+      }
       double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      double left = elapsed / done * (frames - done);
+      double left = elapsed / (done - first) * (frames - done);
       std::ostringstream line;
       line << "frame " << done << " of " << frames << "  " << std::fixed << std::setprecision(3) << s.seconds << " s/frame  "
            << s.faces << " faces  " << format_duration(left) << " left";
@@ -162,16 +213,16 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     }
   } catch (const SimulationError& e) {
     if (line_open) out << "\n";
-    double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    output.write_summary(sim, "failed", e.what(), total, done, threads);
+    output.write_summary(sim, "failed", e.what(), usage(), segments, done, threads);
     err << "vdcloth: simulation failed: " << e.what() << " (frames 0 to " << done << " are in " << dir << ")" << std::endl;
     return kExitSimulationFailed;
   }
   if (line_open) out << "\n";
-  double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  output.write_summary(sim, "done", "", total, done, threads);
-  out << "vdcloth: done, " << done << " frames in " << format_duration(total) << " (" << std::fixed << std::setprecision(3)
-      << total / std::max(done, 1) << " s/frame); results in " << dir << std::endl;
+  const ResourceUsage total = usage();
+  output.write_summary(sim, "done", "", total, segments, done, threads);
+  const double this_segment = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out << "vdcloth: done, " << done - first << " frames in " << format_duration(this_segment) << " ("
+      << std::fixed << std::setprecision(3) << this_segment / std::max(done - first, 1) << " s/frame); results in " << dir << std::endl;
   return kExitOk;
 }
 

@@ -10,13 +10,18 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "app/check_command.hpp"
 #include "app/cli.hpp"
 #include "core/error.hpp"
+#include "core/resource_usage.hpp"
+#include "io/checkpoint.hpp"
 #include "scene/scene.hpp"
 
 extern char** environ;
@@ -30,6 +35,7 @@ namespace {
 const char* kTable1Help =
     "usage: vdcloth bench table1 [--frames N] [--fixed-frames N] [--out DIR] [--threads N] [--scenes DIR]\n"
     "                            [--scene NAME]... [--mode M]... [--mesh-every N] [--tables-only]\n"
+    "                            [--resume]\n"
     "\n"
     "Runs karate, solo-dancer and dancers-10 (from DIR/<name>.json) in fixed, adaptive and view\n"
     "modes, each as a child `vdcloth run` into OUT/<scene>/<mode>/, and writes OUT/table1.md and\n"
@@ -50,7 +56,9 @@ const char* kTable1Help =
     "  --tables-only   run nothing: make the tables from the runs already in OUT\n"
     "  --mesh-every N  meshes written by each run, as `vdcloth run --mesh-every` (default: 0, none);\n"
     "                  with meshes, each run is checked for crossings at its frame ends (`vdcloth\n"
-    "                  check`) once it is done, and the tables say how many frames had any\n";
+    "                  check`) once it is done, and the tables say how many frames had any\n"
+    "  --resume        keep the runs in OUT that are done, go on with the unfinished ones from their\n"
+    "                  checkpoints (`vdcloth run --resume`), and start the others\n";
 
 struct Table1Args {
   std::optional<int> frames, fixed_frames;
@@ -60,6 +68,7 @@ struct Table1Args {
   std::vector<std::string> only, modes;
   int mesh_every = 0;
   bool tables_only = false;
+  bool resume = false;
 };
 
 Table1Args parse_table1_args(const std::vector<std::string>& args) {
@@ -81,6 +90,7 @@ Table1Args parse_table1_args(const std::vector<std::string>& args) {
       if (m != "fixed" && m != "adaptive" && m != "view") throw UsageError("--mode expects fixed, adaptive or view, got '" + m + "'");
       r.modes.push_back(m);
     } else if (a == "--tables-only") r.tables_only = true;
+    else if (a == "--resume") r.resume = true;
     else if (a == "--mesh-every") {
       const std::string& v = value();
       r.mesh_every = v == "0" ? 0 : parse_positive_int(a, v);
@@ -108,28 +118,29 @@ void read_check_status(const std::string& dir, Run& r) {
   else r.check.reset();
 }
 
+// The run in `dir` finished all of its `frames` (its summary.json says so).
+bool run_is_done(const std::string& dir, int frames) {
+  std::ifstream in(dir + "/summary.json");
+  if (!in) return false;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  return !j.is_discarded() && j.value("status", "") == "done" && j.value("frames", -1) == frames;
+}
+
+// CPU time, peak memory and steal from the run's summary.json, which sums them over every
+// process a resumed run was made in; left as they are when the summary does not have them.
+void read_summary_usage(const std::string& dir, Run& r) {
+  std::ifstream in(dir + "/summary.json");
+  if (!in) return;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.contains("cpu_seconds") || !j.contains("peak_memory_kib")) return;
+  r.cpu_seconds = j["cpu_seconds"].get<double>();
+  r.peak_kib = j["peak_memory_kib"].get<long>();
+  if (j.contains("steal")) r.steal = j["steal"].get<double>();
+}
+
 std::string check_cell(const Run& r) {
   if (!r.check) return "";
   return std::to_string(r.check->frames_with_crossings) + " of " + std::to_string(r.check->frames_checked);
-}
-
-// The machine's CPU time from /proc/stat's first line, in clock ticks: the total (user, nice,
-// system, idle, iowait, irq, softirq, steal) and the steal, time a virtual machine's CPUs were
-// ready but the host ran something else. Zeros where /proc/stat cannot be read.
-struct CpuTicks {
-  long long total = 0, steal = 0;
-};
-CpuTicks machine_ticks() {
-  std::ifstream stat("/proc/stat");
-  std::string cpu;
-  CpuTicks t;
-  if (!(stat >> cpu) || cpu != "cpu") return t;
-  long long v = 0;
-  for (int i = 0; i < 8 && stat >> v; ++i) {
-    t.total += v;
-    if (i == 7) t.steal = v;
-  }
-  return t;
 }
 
 // Runs argv as a child process; returns its exit status (128 + signal if killed), peak memory
@@ -301,11 +312,13 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
   for (const auto& name : all)
     if (args.only.empty() || std::find(args.only.begin(), args.only.end(), name) != args.only.end()) scenes.push_back(name);
   // Every scene is read (and checked) before the first run starts.
+  std::map<std::string, int> scene_frames;
   for (const auto& name : scenes) {
     const std::string path = args.scenes + "/" + name + ".json";
     if (!fs::is_regular_file(path)) throw InputError(path, "", "scene not found (use --scenes DIR)");
     const Scene scene = load_scene(path);
     if (!scene.camera) throw InputError(path, "camera", "table1 needs a camera for its view-dependent runs");
+    scene_frames[name] = scene.frames;
   }
   const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   std::error_code ec;
@@ -322,20 +335,24 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
       const std::string dir = args.out + "/" + name + "/" + mode;
       const bool wanted = std::find(scenes.begin(), scenes.end(), name) != scenes.end() &&
                           (args.modes.empty() || std::find(args.modes.begin(), args.modes.end(), mode) != args.modes.end());
-      if (wanted && !args.tables_only) {
+      const std::optional<int> frames = mode == std::string("fixed") && args.fixed_frames ? args.fixed_frames : args.frames;
+      const bool kept = wanted && args.resume && run_is_done(dir, frames ? *frames : scene_frames[name]);
+      if (wanted && !args.tables_only && !kept) {
         std::vector<std::string> child{"vdcloth", "run", args.scenes + "/" + name + ".json", "--mode", mode, "--out", dir,
                                        "--threads", std::to_string(threads), "--mesh-every", std::to_string(args.mesh_every)};
-        const std::optional<int> frames = mode == std::string("fixed") && args.fixed_frames ? args.fixed_frames : args.frames;
         if (frames) {
           child.push_back("--frames");
           child.push_back(std::to_string(*frames));
         }
-        out << "vdcloth bench table1: " << name << ", " << mode << " mode" << std::endl;
-        fs::remove(dir + "/stats.csv", ec);
+        const bool resuming = args.resume && fs::is_regular_file(dir + "/" + kCheckpointFile);
+        if (resuming) child.push_back("--resume");
+        out << "vdcloth bench table1: " << name << ", " << mode << " mode" << (resuming ? ", resumed" : "") << std::endl;
+        if (!resuming) fs::remove(dir + "/stats.csv", ec);
         const CpuTicks before = machine_ticks();
         r.status = run_child(child, r.peak_kib, r.cpu_seconds);
         const CpuTicks after = machine_ticks();
         if (after.total > before.total) r.steal = static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total);
+        read_summary_usage(dir, r);  // all of a resumed run's processes, not only the last
         std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
         if (r.status != 0) err << "vdcloth bench table1: " << name << " in " << mode << " mode failed (exit " << r.status << ")" << std::endl;
         // The frame-end check of its meshes, after the run so it never shares the machine with one.

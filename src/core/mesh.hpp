@@ -152,6 +152,12 @@ class Mesh {
   // non-degenerate in material space.
   ValidationReport validate() const;
 
+  // Every array, in its order, with the attributes: read_binary gives back the same mesh,
+  // element for element and adjacency list for adjacency list (mesh_binary.cpp, checkpoints).
+  void write_binary(BinaryWriter& out) const;
+  // Throws BinaryFormatError when the data is not a mesh written by write_binary.
+  static Mesh read_binary(BinaryReader& in);
+
  private:
   template <class Tag>
   static std::size_t at(Handle<Tag> h) {

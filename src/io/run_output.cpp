@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "io/checkpoint.hpp"
 #include "io/obj.hpp"
 #include "io/ply.hpp"
 
@@ -15,6 +16,11 @@ namespace vdc {
 namespace fs = std::filesystem;
 
 namespace {
+const char* const kStatsHeader =
+    "frame,faces,vertices,seconds,substeps,halvings,solver_iterations,factorizations,assemble_seconds,solve_seconds,"
+    "remesh_seconds,splits,flips,collapses,collision_seconds,impacts,collision_iterations,collision_fallbacks,kinetic_energy,gravitational_energy,elastic_energy,"
+    "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds,velocity_clamps";
+
 std::string frame_file(const std::string& dir, const std::string& kind, const std::string& name, int frame,
                        const std::string& extension = ".obj") {
   char num[16];
@@ -49,11 +55,60 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
       fs::remove(entry.path());
   }
   fs::remove(fs::path(dir) / "summary.json", ec);
+  // A checkpoint left by an earlier run must not be resumed into this one.
+  fs::remove(fs::path(dir) / kCheckpointFile, ec);
   stats_.open(dir + "/stats.csv");
   if (!stats_) throw InputError(dir + "/stats.csv", "", "cannot write");
-  stats_ << "frame,faces,vertices,seconds,substeps,halvings,solver_iterations,factorizations,assemble_seconds,solve_seconds,"
-            "remesh_seconds,splits,flips,collapses,collision_seconds,impacts,collision_iterations,collision_fallbacks,kinetic_energy,gravitational_energy,elastic_energy,"
-            "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds,velocity_clamps\n";
+  stats_ << kStatsHeader << "\n";
+}
+
+RunOutput::RunOutput(const std::string& dir, int resume_at) : dir_(dir) {
+  std::error_code ec;
+  fs::create_directories(fs::path(dir) / "frames", ec);
+  if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
+  const std::string stats_path = dir + "/stats.csv";
+  std::ifstream in(stats_path);
+  if (!in) throw InputError(stats_path, "", "cannot open (the run to resume has no statistics)");
+  std::string header;
+  std::getline(in, header);
+  if (header != kStatsHeader) throw InputError(stats_path, "line 1", "not the statistics of this vdcloth's runs");
+  std::vector<std::string> kept;
+  int line_number = 1;
+  for (std::string line; std::getline(in, line) && static_cast<int>(kept.size()) < resume_at;) {
+    ++line_number;
+    int frame = 0, faces = 0, vertices = 0;
+    double seconds = 0;
+    if (std::sscanf(line.c_str(), "%d,%d,%d,%lf", &frame, &faces, &vertices, &seconds) != 4 || frame != static_cast<int>(kept.size()) + 1)
+      throw InputError(stats_path, "line " + std::to_string(line_number), "expected the row of frame " + std::to_string(kept.size() + 1));
+    kept.push_back(line);
+    tally(faces, seconds);
+  }
+  if (static_cast<int>(kept.size()) < resume_at)
+    throw InputError(stats_path, "", "ends at frame " + std::to_string(kept.size()) + ", before the checkpoint's frame " + std::to_string(resume_at));
+  in.close();
+  // Frames past the checkpoint came from the stopped process; they are made again.
+  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames")) {
+    static const std::regex name(R"(^(cloth|obstacle)_.+\.([0-9]{4,})\.(obj|ply)$)");
+    std::smatch m;
+    const std::string file = entry.path().filename().string();
+    if (std::regex_match(file, m, name) && std::stoi(m[2].str()) > resume_at) fs::remove(entry.path());
+  }
+  fs::remove(fs::path(dir) / "summary.json", ec);
+  stats_.open(stats_path, std::ios::trunc);
+  if (!stats_) throw InputError(stats_path, "", "cannot write");
+  stats_ << kStatsHeader << "\n";
+  for (const auto& line : kept) stats_ << line << "\n";
+  stats_ << std::flush;
+}
+
+void RunOutput::tally(int faces, double seconds) {
+  if (rows_ == 0) min_faces_ = max_faces_ = faces;
+  min_faces_ = std::min(min_faces_, faces);
+  max_faces_ = std::max(max_faces_, faces);
+  sum_faces_ += faces;
+  sum_seconds_ += seconds;
+  max_seconds_ = std::max(max_seconds_, seconds);
+  ++rows_;
 }
 
 void RunOutput::write_frame(const Ensemble& run, int frame) const {
@@ -81,17 +136,11 @@ void RunOutput::write_stats_row(const FrameStats& s) {
                 s.energy.gravitational, s.energy.elastic, s.proximities, s.untangle_moves, s.visible_faces,
                 s.back_facing_faces, s.out_of_frame_faces, s.view_seconds, s.velocity_clamps);
   stats_ << line << std::flush;
-  if (rows_ == 0) min_faces_ = max_faces_ = s.faces;
-  min_faces_ = std::min(min_faces_, s.faces);
-  max_faces_ = std::max(max_faces_, s.faces);
-  sum_faces_ += s.faces;
-  sum_seconds_ += s.seconds;
-  max_seconds_ = std::max(max_seconds_, s.seconds);
-  ++rows_;
+  tally(s.faces, s.seconds);
 }
 
-void RunOutput::write_summary(const Ensemble& run, const std::string& status, const std::string& error, double total_seconds,
-                              int frames_done, int threads) const {
+void RunOutput::write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
+                              int segments, int frames_done, int threads) const {
   nlohmann::json j;
   const Scene& scene = run.parts().front()->scene();
   j["scene"] = run.path();
@@ -105,7 +154,11 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   j["frame_time"] = scene.frame_time;
   j["substeps"] = scene.substeps;
   j["linear_solver"] = linear_solver_name(scene.solver.linear);
-  j["total_seconds"] = total_seconds;
+  j["total_seconds"] = usage.wall_seconds;
+  j["segments"] = segments;
+  j["cpu_seconds"] = usage.cpu_seconds;
+  j["peak_memory_kib"] = usage.peak_kib;
+  if (usage.steal() >= 0) j["steal"] = usage.steal();
   j["seconds_per_frame"] = {{"mean", rows_ ? sum_seconds_ / rows_ : 0.0}, {"max", max_seconds_}};
   j["faces"] = {{"min", min_faces_}, {"max", max_faces_}, {"mean", rows_ ? sum_faces_ / rows_ : 0.0}};
   nlohmann::json garments = nlohmann::json::array();

@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "core/resource_usage.hpp"
 #include "sim/ensemble.hpp"
 
 namespace vdc {
@@ -21,14 +22,21 @@ class RunOutput {
   // Creates DIR and DIR/frames, removing frame files of an earlier run. Throws InputError if the
   // directory cannot be made.
   explicit RunOutput(const std::string& dir);
+  // Goes on with the run in DIR from frame `resume_at`: keeps its stats rows and frame files up to
+  // that frame and removes the later ones (made after its last checkpoint). Throws InputError
+  // when DIR's stats.csv does not hold every frame up to `resume_at`.
+  RunOutput(const std::string& dir, int resume_at);
   void write_frame(const Ensemble& run, int frame) const;  // meshes of every garment and obstacle
   void write_stats_row(const FrameStats& s);
-  // status: "done" or "failed"; error: message when failed.
-  void write_summary(const Ensemble& run, const std::string& status, const std::string& error, double total_seconds,
-                     int frames_done, int threads) const;
+  // status: "done" or "failed"; error: message when failed. `usage` covers all `segments`
+  // processes the run was made in.
+  void write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
+                     int segments, int frames_done, int threads) const;
   const std::string& dir() const { return dir_; }
 
  private:
+  void tally(int faces, double seconds);  // one more row in the summary's statistics
+
   std::string dir_;
   std::ofstream stats_;
   double max_seconds_ = 0, sum_seconds_ = 0;

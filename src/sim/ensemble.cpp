@@ -1,5 +1,7 @@
 #include "sim/ensemble.hpp"
 
+#include "core/error.hpp"
+
 #include <chrono>
 #include <exception>
 
@@ -52,13 +54,16 @@ void for_each_part(int n, int team, F&& body) {
 }
 }  // namespace
 
-Ensemble::Ensemble(Scene scene, const SimOptions& options, Simulation::Log log)
-    : name_(scene.name), path_(scene.path), options_(options), log_(std::move(log)) {
+template <class Make>
+void Ensemble::make_parts(Scene scene, std::size_t expected_parts, const std::string& source, Make&& make) {
   std::vector<Scene> scenes = split_groups(std::move(scene));
+  if (expected_parts > 0 && expected_parts != scenes.size())
+    throw InputError(source, "", "holds " + std::to_string(expected_parts) + " garment groups where the scene has " +
+                                     std::to_string(scenes.size()));
   const int n = static_cast<int>(scenes.size());
-  team_ = std::max(1, std::min(options.threads, n));
-  SimOptions part_options = options;
-  part_options.threads = std::max(1, options.threads / n);
+  team_ = std::max(1, std::min(options_.threads, n));
+  SimOptions part_options = options_;
+  part_options.threads = std::max(1, options_.threads / n);
   std::vector<std::string> labels;
   for (const Scene& s : scenes) labels.push_back(n > 1 ? s.garments.front().group + ": " : "");
   parts_.resize(scenes.size());
@@ -70,8 +75,27 @@ Ensemble::Ensemble(Scene scene, const SimOptions& options, Simulation::Log log)
         std::lock_guard<std::mutex> lock(log_mutex_);
         log_(label + msg);
       };
-    parts_[i] = std::make_unique<Simulation>(std::move(scenes[i]), part_options, part_log);
+    parts_[i] = make(i, std::move(scenes[i]), part_options, part_log);
   });
+}
+
+Ensemble::Ensemble(Scene scene, const SimOptions& options, Simulation::Log log)
+    : name_(scene.name), path_(scene.path), options_(options), log_(std::move(log)) {
+  make_parts(std::move(scene), 0, "", [](std::size_t, Scene part, const SimOptions& o, Simulation::Log l) {
+    return std::make_unique<Simulation>(std::move(part), o, std::move(l));
+  });
+}
+
+Ensemble::Ensemble(Scene scene, const SimOptions& options, Simulation::Log log, std::vector<ResumePoint> from, const std::string& source)
+    : name_(scene.name), path_(scene.path), options_(options), log_(std::move(log)) {
+  if (from.empty()) throw InputError(source, "", "holds no garment group");
+  make_parts(std::move(scene), from.size(), source, [&](std::size_t k, Scene part, const SimOptions& o, Simulation::Log l) {
+    return std::make_unique<Simulation>(std::move(part), o, std::move(l), std::move(from[k]), source);
+  });
+}
+
+void Ensemble::restart_solvers() {
+  for (auto& p : parts_) p->restart_solvers();
 }
 
 FrameStats Ensemble::step_frame() {

@@ -15,10 +15,15 @@ class Ensemble {
  public:
   // options.threads is shared out: parts run side by side, each with threads / parts (at least 1).
   Ensemble(Scene scene, const SimOptions& options, Simulation::Log log = {});
+  // Resumes every part at its ResumePoint (one a part, in part order); `source` names where
+  // they came from in errors.
+  Ensemble(Scene scene, const SimOptions& options, Simulation::Log log, std::vector<ResumePoint> from, const std::string& source);
 
   // Every part one frame. Counts, faces and part timings are summed over the parts; `seconds`
   // is the wall time of the whole frame. Throws the first part's SimulationError.
   FrameStats step_frame();
+
+  void restart_solvers();  // every part's (Simulation::restart_solvers)
 
   const std::vector<std::unique_ptr<Simulation>>& parts() const { return parts_; }
   const std::string& name() const { return name_; }
@@ -29,6 +34,12 @@ class Ensemble {
   int num_vertices() const;
 
  private:
+  // Splits the scene into its parts and builds them in parallel, each by make(k, its scene, its
+  // options, its log); with expected_parts > 0, throws InputError naming `source` unless the
+  // scene has that many.
+  template <class Make>
+  void make_parts(Scene scene, std::size_t expected_parts, const std::string& source, Make&& make);
+
   std::string name_, path_;
   SimOptions options_;
   std::mutex log_mutex_;

@@ -56,6 +56,30 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
   untangle_cloth(start);
 }
 
+Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePoint from, const std::string& source)
+    : scene_(std::move(scene)), options_(options), log_(std::move(log)), frame_(from.frame) {
+  if (options_.mode == SimMode::View && !scene_.camera)
+    throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block to the scene");
+  if (from.garments.size() != scene_.garments.size() || from.names.size() != from.garments.size())
+    throw InputError(source, "", "holds " + std::to_string(from.garments.size()) + " garment meshes where the scene has " +
+                                     std::to_string(scene_.garments.size()));
+  for (std::size_t g = 0; g < from.garments.size(); ++g) {
+    if (from.names[g] != scene_.garments[g].name)
+      throw InputError(source, "", "has garment '" + from.names[g] + "' where the scene has '" + scene_.garments[g].name + "'");
+    const auto& handle = from.garments[g].node_attrs();
+    if (!handle.has(kHandleAttr) || !handle.has(kAnchorAttr))
+      throw InputError(source, scene_.garments[g].name, "the garment's mesh has no handle attributes");
+    scene_.garments[g].mesh = std::move(from.garments[g]);
+  }
+  for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
+  for (auto& o : scene_.obstacles)
+    if (o.moves()) {
+      const std::vector<Vec3> x = o.positions_at(time());
+      for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[static_cast<std::size_t>(n.idx)];
+    }
+  rebuild();
+}
+
 void Simulation::remesh_garments(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<std::vector<Vec3>> obstacle_x;
@@ -132,6 +156,7 @@ void Simulation::untangle_cloth(FrameStats& stats) {
 }
 
 void Simulation::rebuild() {
+  restart_pending_ = false;
   model_ = ClothModel();
   offsets_.clear();
   for (const auto& g : scene_.garments) offsets_.push_back(append_garment(model_, g.mesh, g.material));
@@ -311,6 +336,7 @@ FrameStats Simulation::step_frame() {
   const double h = scene_.frame_time / scene_.substeps;
   const double t_frame = time();
   if (options_.mode != SimMode::Fixed) remesh_garments(stats);
+  if (restart_pending_) rebuild();  // unless remeshing just did
   for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
   ++frame_;
   scatter_state();

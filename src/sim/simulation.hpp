@@ -54,13 +54,30 @@ struct FrameStats {
   EnergyReport energy;
 };
 
+// Where a stopped simulation resumes: the frame it had reached and its garments' meshes then,
+// in the scene's garment order (a checkpoint, io/checkpoint.hpp).
+struct ResumePoint {
+  int frame = 0;
+  std::vector<std::string> names;  // of the garments, to check against the scene
+  std::vector<Mesh> garments;
+};
+
 class Simulation {
  public:
   using Log = std::function<void(const std::string&)>;
   Simulation(Scene scene, const SimOptions& options, Log log = {});
+  // Resumes at `from`: the scene's garments take its meshes, and nothing is remeshed or
+  // untangled, so the next frame is the one the stopped simulation would have made after
+  // restart_solvers(). Throws InputError naming `source` when the meshes do not fit the scene.
+  Simulation(Scene scene, const SimOptions& options, Log log, ResumePoint from, const std::string& source);
 
   // Simulates the next frame. Throws SimulationError when a step fails even at the smallest size.
   FrameStats step_frame();
+
+  // Drops what the solvers carry from step to step (the preconditioner's factorization, the
+  // last velocity change as a first guess, the collision hierarchies): the next frame starts
+  // them afresh from the meshes, as a simulation resumed from this frame does.
+  void restart_solvers() { restart_pending_ = true; }
 
   int frame() const { return frame_; }
   double time() const { return frame_ * scene_.frame_time; }
@@ -100,6 +117,7 @@ class Simulation {
   SimOptions options_;
   Log log_;
   int frame_ = 0;
+  bool restart_pending_ = false;
   ClothModel model_;
   std::vector<int32_t> offsets_;  // first model node of each garment
   std::unique_ptr<ImplicitIntegrator> integrator_;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -49,6 +50,8 @@ class CliTest : public ::testing::Test {
     return run_cli(args, out_, err_, false);
   }
   std::string out_dir() const { return (dir_ / "out").string(); }
+  // Runs a hanging sheet six frames in `mode`, whole and in pieces resumed from checkpoints.
+  void resumed_run_matches(const std::string& mode);
 
   fs::path dir_;
   std::ostringstream out_, err_;
@@ -271,6 +274,129 @@ TEST_F(CliTest, CheckPassesACleanRunAndListsPlantedCrossings) {
   EXPECT_EQ(run({"check", out_dir(), "--every", "0"}), kExitBadInput);
   EXPECT_EQ(run({"check", "--help"}), kExitOk);
   EXPECT_NE(out_.str().find("--every"), std::string::npos);
+}
+
+// A sheet hanging from two corners, remeshed every frame: enough motion and topology change for
+// a resumed run to have something to get wrong.
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// stats.csv without the columns that time the run (named *seconds), which differ run to run.
+std::vector<std::string> stats_without_timings(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> rows;
+  std::vector<bool> timing;
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream cells(line);
+    std::string row, cell;
+    for (std::size_t c = 0; std::getline(cells, cell, ','); ++c) {
+      if (rows.empty()) timing.push_back(cell.size() >= 7 && cell.compare(cell.size() - 7, 7, "seconds") == 0);
+      if (c < timing.size() && !timing[c]) row += cell + ",";
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+const char* kHangingSheet =
+    R"({"frames": 6, "substeps": 2, "remeshing": {"size": [0.06, 0.5]}, "garments": [{"name": "s", )"
+    R"("mesh": {"grid": {"size": [1, 1], "cells": [4, 4]}}, "material": "cotton.json", "handles": [{"uv": [[0, 1], [1, 1]]}]}]})";
+
+// Remeshed every frame (meshes and attributes must come back exactly), and fixed with a linear
+// solver that carries a preconditioner and a first guess from step to step (they must restart
+// at the checkpoint, in the run as in its resumption).
+TEST_F(CliTest, AResumedRunIsTheRunThatNeverStopped) {
+  for (const std::string mode : {"adaptive", "fixed"}) {
+    SCOPED_TRACE(mode);
+    resumed_run_matches(mode);
+  }
+}
+
+void CliTest::resumed_run_matches(const std::string& mode) {
+  std::string scene = kHangingSheet;
+  if (mode == "fixed") scene.replace(1, 0, R"("solver": {"linear": "cholmod-pcg"}, )");
+  const std::string scene_path = write("hang.json", scene);
+  const fs::path whole = dir_ / (mode + "_whole"), pieces = dir_ / (mode + "_pieces");
+  auto run_to = [&](const fs::path& out, std::vector<std::string> extra) {
+    std::vector<std::string> args{"run", scene_path, "--mode", mode, "--out", out.string(), "--threads", "1", "--checkpoint-every", "2"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run(args);
+  };
+  ASSERT_EQ(run_to(whole, {}), kExitOk) << err_.str();
+  // In pieces: to frame 2 (a checkpoint), on to frame 3 (another), then back to the checkpoint
+  // of frame 2, as if the process had died at frame 3 before writing its own.
+  ASSERT_EQ(run_to(pieces, {"--frames", "2"}), kExitOk) << err_.str();
+  const fs::path at2 = dir_ / (mode + "_at2.bin");
+  fs::copy_file(pieces / "checkpoint.bin", at2);
+  ASSERT_EQ(run_to(pieces, {"--frames", "3", "--resume"}), kExitOk) << err_.str();
+  ASSERT_TRUE(fs::exists(pieces / "frames" / "cloth_s.0003.obj"));
+  fs::copy_file(at2, pieces / "checkpoint.bin", fs::copy_options::overwrite_existing);
+  ASSERT_EQ(run_to(pieces, {"--resume"}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find("resumed at frame 2"), std::string::npos) << out_.str();
+
+  for (int f = 0; f <= 6; ++f) {
+    const std::string name = "cloth_s.000" + std::to_string(f) + ".obj";
+    EXPECT_EQ(read_file(pieces / "frames" / name), read_file(whole / "frames" / name)) << name;
+  }
+  const std::vector<std::string> rows = stats_without_timings(whole / "stats.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  EXPECT_EQ(stats_without_timings(pieces / "stats.csv"), rows);
+  // The adaptive run remeshed: the sheet's face count changed over the six frames.
+  auto faces = [](const std::string& row) { return std::stoi(row.substr(row.find(',') + 1)); };
+  if (mode == "adaptive") {
+    EXPECT_NE(faces(rows[1]), faces(rows[6])) << rows[1] << " / " << rows[6];
+  }
+  nlohmann::json summary = nlohmann::json::parse(std::ifstream(pieces / "summary.json"));
+  EXPECT_EQ(summary["status"], "done");
+  EXPECT_EQ(summary["frames"], 6);
+  EXPECT_EQ(summary["segments"], 2);
+  EXPECT_GT(summary["cpu_seconds"].get<double>(), 0);
+  EXPECT_GT(summary["peak_memory_kib"].get<long>(), 0);
+}
+
+TEST_F(CliTest, ResumeRefusesWhatItCannotGoOnFromAndLeavesTheRunAlone) {
+  const std::string scene_path = write("hang.json", kHangingSheet);
+  const fs::path out = dir_ / "out";
+  auto resume = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{"run", scene_path, "--mode", "adaptive", "--out", out.string(), "--threads", "1", "--resume"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run(args);
+  };
+  EXPECT_EQ(resume({}), kExitBadInput);
+  EXPECT_NE(err_.str().find("no checkpoint to resume from"), std::string::npos) << err_.str();
+  ASSERT_EQ(run({"run", scene_path, "--mode", "adaptive", "--out", out.string(), "--threads", "1", "--frames", "2"}), kExitOk) << err_.str();
+  const fs::path checkpoint = out / "checkpoint.bin";
+  ASSERT_TRUE(fs::exists(checkpoint));  // the default interval still checkpoints the last frame
+  const std::string stats = read_file(out / "stats.csv"), summary = read_file(out / "summary.json"), good = read_file(checkpoint);
+
+  struct Case {
+    const char* what;
+    std::function<void()> spoil;
+    std::vector<std::string> extra;
+    std::vector<std::string> expect;
+  };
+  const std::vector<Case> cases{
+      {"another mode", [] {}, {"--mode", "fixed"}, {"adaptive mode, not fixed"}},
+      {"frames before the checkpoint", [] {}, {"--frames", "1"}, {"at frame 2, past the 1 frames"}},
+      {"a flipped byte", [&] { std::string b = good; b[b.size() / 2] ^= 0x10; std::ofstream(checkpoint, std::ios::binary) << b; }, {},
+       {"checkpoint.bin", "checksum"}},
+      {"a cut-off file", [&] { std::ofstream(checkpoint, std::ios::binary) << good.substr(0, good.size() / 3); }, {}, {"checkpoint.bin"}},
+      {"not a checkpoint", [&] { std::ofstream(checkpoint, std::ios::binary) << "frame,faces\n1,2\n"; }, {}, {"checkpoint.bin", "not a vdcloth checkpoint"}},
+      {"an edited scene", [&] { write("hang.json", std::string(kHangingSheet).replace(1, 11, "\"frames\": 9")); }, {}, {"another version of"}},
+  };
+  for (const Case& c : cases) {
+    std::ofstream(checkpoint, std::ios::binary) << good;
+    write("hang.json", kHangingSheet);
+    c.spoil();
+    EXPECT_EQ(resume(c.extra), kExitBadInput) << c.what;
+    for (const auto& text : c.expect) EXPECT_NE(err_.str().find(text), std::string::npos) << c.what << ": " << err_.str();
+    const std::string message = err_.str();
+    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << c.what << ": " << message;
+    EXPECT_EQ(read_file(out / "stats.csv"), stats) << c.what;
+    EXPECT_EQ(read_file(out / "summary.json"), summary) << c.what;
+  }
 }
 
 TEST_F(CliTest, Table1ReadsARunsStatistics) {

@@ -1,0 +1,40 @@
+#include "core/resource_usage.hpp"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+
+namespace vdc {
+
+CpuTicks machine_ticks() {
+  std::ifstream stat("/proc/stat");
+  std::string cpu;
+  CpuTicks t;
+  if (!(stat >> cpu) || cpu != "cpu") return t;
+  long long v = 0;
+  for (int i = 0; i < 8 && stat >> v; ++i) {
+    t.total += v;
+    if (i == 7) t.steal = v;
+  }
+  return t;
+}
+
+ResourceUsage process_usage(const ResourceUsage& before, const CpuTicks& start, double wall_now) {
+  rusage self{};
+  getrusage(RUSAGE_SELF, &self);
+  ResourceUsage u = before;
+  u.wall_seconds += wall_now;
+  u.cpu_seconds += static_cast<double>(self.ru_utime.tv_sec + self.ru_stime.tv_sec) +
+                   1e-6 * static_cast<double>(self.ru_utime.tv_usec + self.ru_stime.tv_usec);
+  u.peak_kib = std::max(u.peak_kib, static_cast<long>(self.ru_maxrss));
+  const CpuTicks now = machine_ticks();
+  if (now.total > start.total) {
+    u.machine.total += now.total - start.total;
+    u.machine.steal += now.steal - start.steal;
+  }
+  return u;
+}
+
+}  // namespace vdc

@@ -1,0 +1,110 @@
+#include "io/checkpoint.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "core/binary_io.hpp"
+#include "core/error.hpp"
+
+namespace vdc {
+
+namespace {
+const std::string kMagic = "vdcloth checkpoint";
+constexpr uint32_t kFormat = 1;
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open");
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path, "", "cannot read");
+  return bytes;
+}
+}  // namespace
+
+uint64_t file_hash(const std::string& path) {
+  const std::string bytes = read_bytes(path);
+  return fnv1a64(bytes.data(), bytes.size());
+}
+
+void write_checkpoint(const std::string& path, const Ensemble& run, uint64_t scene_hash, int segments, const ResourceUsage& usage) {
+  BinaryWriter out;
+  out.string(kMagic);
+  out.value(kFormat);
+  out.value(scene_hash);
+  out.string(sim_mode_name(run.options().mode));
+  out.value<int32_t>(run.frame());
+  out.value<int32_t>(segments);
+  out.value(usage.wall_seconds);
+  out.value(usage.cpu_seconds);
+  out.value<int64_t>(usage.peak_kib);
+  out.value<int64_t>(usage.machine.total);
+  out.value<int64_t>(usage.machine.steal);
+  out.value<uint64_t>(run.parts().size());
+  for (const auto& part : run.parts()) {
+    out.value<uint64_t>(part->scene().garments.size());
+    for (const auto& g : part->scene().garments) {
+      out.string(g.name);
+      g.mesh.write_binary(out);
+    }
+  }
+  const uint64_t sum = fnv1a64(out.bytes().data(), out.bytes().size());
+  out.value(sum);
+
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+    file.write(out.bytes().data(), static_cast<std::streamsize>(out.bytes().size()));
+    if (!file) throw InputError(tmp, "", "cannot write");
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw InputError(path, "", "cannot write: " + ec.message());
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  const std::string bytes = read_bytes(path);
+  BinaryWriter magic;
+  magic.string(kMagic);
+  if (bytes.compare(0, magic.bytes().size(), magic.bytes()) != 0) throw InputError(path, "", "not a vdcloth checkpoint");
+  if (bytes.size() < magic.bytes().size() + sizeof(uint64_t)) throw InputError(path, "", "too short to be a checkpoint");
+  const std::size_t body = bytes.size() - sizeof(uint64_t);
+  uint64_t stored = 0;
+  std::memcpy(&stored, bytes.data() + body, sizeof stored);
+  BinaryReader in(bytes.data(), body);
+  Checkpoint c;
+  try {
+    in.string();  // the magic, checked above
+    if (stored != fnv1a64(bytes.data(), body)) throw InputError(path, "", "damaged: its checksum does not match its contents");
+    if (const auto format = in.value<uint32_t>(); format != kFormat)
+      in.fail("checkpoint format " + std::to_string(format) + ", this vdcloth reads format " + std::to_string(kFormat));
+    c.scene_hash = in.value<uint64_t>();
+    c.mode = in.string();
+    c.frame = in.value<int32_t>();
+    c.segments = in.value<int32_t>();
+    c.usage.wall_seconds = in.value<double>();
+    c.usage.cpu_seconds = in.value<double>();
+    c.usage.peak_kib = static_cast<long>(in.value<int64_t>());
+    c.usage.machine.total = in.value<int64_t>();
+    c.usage.machine.steal = in.value<int64_t>();
+    if (c.frame < 0 || c.segments < 1) in.fail("frame " + std::to_string(c.frame) + " of segment " + std::to_string(c.segments));
+    const auto parts = in.value<uint64_t>();
+    for (uint64_t p = 0; p < parts; ++p) {
+      ResumePoint point;
+      point.frame = c.frame;
+      const auto garments = in.value<uint64_t>();
+      for (uint64_t g = 0; g < garments; ++g) {
+        point.names.push_back(in.string());
+        point.garments.push_back(Mesh::read_binary(in));
+      }
+      c.parts.push_back(std::move(point));
+    }
+    if (!in.at_end()) in.fail("unexpected bytes after the last garment");
+  } catch (const BinaryFormatError& e) {
+    throw InputError(path, "byte " + std::to_string(e.offset()), e.problem());
+  }
+  return c;
+}
+
+}  // namespace vdc
