@@ -253,7 +253,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
                          [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]); });
       }
     }
-    // Cloth edges against cloth edges (each pair once, from its lower edge) and obstacle edges.
+    // Cloth edges against cloth edges and obstacle edges.
     const auto num_edges = static_cast<int32_t>(cloth_edges_.size());
     std::vector<Hits> edge_hits(cloth_edges_.size());
 #pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
@@ -262,12 +262,21 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const Aabb box = path_box({{-1, A[0]}, {-1, A[1]}});
       Hits& out = edge_hits[static_cast<std::size_t>(ea)];
       const bool all = first_round || has_moved({A[0], A[1]});
-      cloth_edges_near(box, all, [&](int32_t eb) {
-        if (eb <= ea) return;
+      auto cloth_pair = [&](int32_t eb) {
         const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
         if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
         ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, out);
-      });
+      };
+      // Each pair once: in the first round, when every edge queries the whole hierarchy, from
+      // its earlier edge in the hierarchy's order (without entering the subtrees before it);
+      // later, from its lower-numbered edge, found through either hierarchy.
+      if (first_round) {
+        edge_bvh->query_later(box, ea, cloth_pair);
+      } else {
+        cloth_edges_near(box, all, [&](int32_t eb) {
+          if (eb > ea) cloth_pair(eb);
+        });
+      }
       if (!all) continue;
       for (std::size_t o = 0; o < obstacles_.size(); ++o) {
         const auto oi = static_cast<int32_t>(o);

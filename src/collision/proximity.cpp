@@ -186,7 +186,8 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     }
   }
 
-  // Edges: pairs whose closest points are inside both edges.
+  // Edges: pairs whose closest points are inside both edges, each cloth pair once (from its
+  // earlier edge in the hierarchy's order).
   auto interior = [](double s) { return s > 1e-6 && s < 1 - 1e-6; };
   const auto ne = static_cast<int64_t>(cloth_edges_.size());
   std::vector<std::vector<ProximityPair>> edge_pairs(cloth_edges_.size());
@@ -197,8 +198,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     Aabb box = box_of({a0, a1});
     box.pad(band);
     auto& out = edge_pairs[static_cast<std::size_t>(ea)];
-    edge_bvh.query(box, [&](int32_t eb) {
-      if (eb <= ea) return;
+    edge_bvh.query_later(box, static_cast<int32_t>(ea), [&](int32_t eb) {
       const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
       if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
       const Vec3 b0 = cx(B[0]), b1 = cx(B[1]);

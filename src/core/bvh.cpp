@@ -18,11 +18,14 @@ Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
     return;
   }
   build(prims, 0, prims.size(), centres);
+  rank_.resize(prims.size());
+  for (std::size_t i = 0; i < prims.size(); ++i) rank_[static_cast<std::size_t>(prims[i])] = static_cast<int32_t>(i);
 }
 
 int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres) {
   const auto index = static_cast<int32_t>(nodes_.size());
   nodes_.push_back(Node{});
+  nodes_[static_cast<std::size_t>(index)].last = static_cast<int32_t>(end) - 1;
   if (end - begin == 1) {
     nodes_[static_cast<std::size_t>(index)].prim = prims[begin];
     nodes_[static_cast<std::size_t>(index)].box = leaf_box_[static_cast<std::size_t>(prims[begin])];

@@ -47,7 +47,15 @@ class Bvh {
   // Calls f(i) for every primitive whose box overlaps `box`.
   template <class F>
   void query(const Aabb& box, F&& f) const {
-    traverse([&](const Aabb& b) { return b.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
+    traverse([&](const Node& n) { return n.box.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
+  }
+  // As query, but only primitives after `prim` in the tree's leaf order: when every primitive
+  // of a tree queries the tree, each overlapping pair is met once, from its earlier member, and
+  // the subtrees wholly before `prim` are not entered at all.
+  template <class F>
+  void query_later(const Aabb& box, int32_t prim, F&& f) const {
+    const int32_t rank = rank_[static_cast<std::size_t>(prim)];
+    traverse([&](const Node& n) { return n.last > rank && n.box.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
   }
 
   // Branch and bound for the nearest primitive to p: `dist(i)` returns primitive i's distance
@@ -55,7 +63,7 @@ class Bvh {
   // at `best` (a search radius) and ends as the smallest distance found.
   template <class F>
   void nearest(const Vec3& p, double& best, F&& dist) const {
-    traverse([&](const Aabb& b) { return b.distance(p) < best; }, [&](int32_t prim) { best = std::min(best, dist(prim)); },
+    traverse([&](const Node& n) { return n.box.distance(p) < best; }, [&](int32_t prim) { best = std::min(best, dist(prim)); },
              [&](const Aabb& l, const Aabb& r) { return l.distance(p) <= r.distance(p); });
   }
 
@@ -64,7 +72,7 @@ class Bvh {
 
  private:
   // Depth first with a fixed stack (the median split keeps the depth at most ceil(log2 n) + 1,
-  // far below its 128 entries): descends into nodes whose box `enter` accepts, calls `leaf` on
+  // far below its 128 entries): descends into nodes that `enter` accepts, calls `leaf` on
   // primitives, and visits the left child first when `left_first(left box, right box)`.
   template <class Enter, class Leaf, class LeftFirst>
   void traverse(Enter&& enter, Leaf&& leaf, LeftFirst&& left_first) const {
@@ -74,7 +82,7 @@ class Bvh {
     stack[static_cast<std::size_t>(top++)] = 0;
     while (top > 0) {
       const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (!enter(n.box)) continue;
+      if (!enter(n)) continue;
       if (n.left < 0) {
         leaf(n.prim);
         continue;
@@ -89,6 +97,7 @@ class Bvh {
     Aabb box;
     int32_t left = -1, right = -1;  // children; -1 for a leaf
     int32_t prim = -1;              // the primitive of a leaf
+    int32_t last = -1;              // the last leaf under the node, in leaf order
   };
   int32_t build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
   void refit_node(int32_t n);
@@ -97,6 +106,7 @@ class Bvh {
 
   std::vector<Node> nodes_;
   std::vector<Aabb> leaf_box_;
+  std::vector<int32_t> rank_;  // by primitive: its place in leaf order (depth first, left first)
 };
 
 // A hierarchy kept over a sequence of box updates for the same primitives: refit on each update,

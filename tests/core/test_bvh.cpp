@@ -49,6 +49,33 @@ TEST(Bvh, SelfPairsMatchBruteForceBeforeAndAfterRefit) {
   }
 }
 
+// Every primitive querying the tree for the ones after it meets each overlapping pair exactly
+// once, before and after a refit (the leaf order is the tree's, so refits keep it).
+TEST(Bvh, QueriesOfLaterPrimitivesMeetEachPairOnce) {
+  std::mt19937 rng(11);
+  std::vector<Aabb> boxes = random_boxes(rng, 400, 1.0);
+  Bvh tree(boxes);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::set<std::pair<int, int>> met;
+    int meetings = 0;
+    for (int32_t i = 0; i < tree.size(); ++i)
+      tree.query_later(boxes[static_cast<std::size_t>(i)], i, [&](int32_t j) {
+        EXPECT_NE(i, j);
+        met.emplace(std::min(i, j), std::max(i, j));
+        ++meetings;
+      });
+    EXPECT_EQ(met, brute_self(boxes)) << "pass " << pass;
+    EXPECT_EQ(meetings, static_cast<int>(met.size())) << "pass " << pass;
+    EXPECT_GT(met.size(), 50u);
+    for (auto& b : boxes) {
+      const Vec3 d = 0.05 * Vec3(std::uniform_real_distribution<double>(-1, 1)(rng), 0.3, -0.2);
+      b.lo += d;
+      b.hi += d;
+    }
+    tree.refit(boxes);
+  }
+}
+
 TEST(Bvh, PairsBetweenTreesAndBoxQueriesMatchBruteForce) {
   std::mt19937 rng(6);
   auto a = random_boxes(rng, 300, 1.0), b = random_boxes(rng, 200, 1.0);
