@@ -136,16 +136,24 @@ std::string format_duration(double s) {
   return o.str();
 }
 
-// The checkpoint of the run in `dir` to resume, checked against the scene file and mode.
-Checkpoint checkpoint_to_resume(const std::string& dir, const std::string& scene_path, SimMode mode) {
+// The checkpoint of the run in `dir` to resume, checked against the scene file, this build,
+// the mode and the checkpoint interval: anything else would make another run than the one
+// stopped.
+Checkpoint checkpoint_to_resume(const RunArgs& args, const std::string& dir, uint64_t build_hash) {
   const std::string path = dir + "/" + kCheckpointFile;
   if (!fs::is_regular_file(path))
     throw InputError(path, "", "no checkpoint to resume from (the run was made with --checkpoint-every 0, or stopped before its first)");
   Checkpoint c = read_checkpoint(path);
-  if (c.scene_hash != file_hash(scene_path))
-    throw InputError(path, "", "made from another version of " + scene_path + ": run without --resume to start again");
-  if (c.mode != sim_mode_name(mode))
-    throw UsageError("--resume: the run in " + dir + " is in " + c.mode + " mode, not " + sim_mode_name(mode));
+  if (c.scene_hash != file_hash(args.scene))
+    throw InputError(path, "", "made from another version of " + args.scene + ": run without --resume to start again");
+  if (c.build_hash != build_hash)
+    throw InputError(path, "", "written by another build of vdcloth, which may simulate differently: run without --resume to start again");
+  if (c.mode != sim_mode_name(args.mode))
+    throw UsageError("--resume: the run in " + dir + " is in " + c.mode + " mode, not " + sim_mode_name(args.mode));
+  if (c.checkpoint_every != args.checkpoint_every)
+    throw UsageError("--resume: the run in " + dir + " was checkpointed every " + std::to_string(c.checkpoint_every) +
+                     " frames; resume it with --checkpoint-every " + std::to_string(c.checkpoint_every) +
+                     " (the solvers restart at each checkpoint, so another interval makes another run)");
   return c;
 }
 
@@ -155,10 +163,15 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::string dir = args.out.empty() ? "out/" + scene.name : args.out;
   const int frames = scene.frames;
-  const uint64_t scene_hash = args.checkpoint_every > 0 || args.resume ? file_hash(args.scene) : 0;
+  Checkpoint progress;  // what each checkpoint of this run records besides the meshes
+  progress.checkpoint_every = args.checkpoint_every;
+  if (args.checkpoint_every > 0 || args.resume) {
+    progress.scene_hash = file_hash(args.scene);
+    progress.build_hash = executable_hash();
+  }
   std::optional<Checkpoint> resume;
   if (args.resume) {
-    resume = checkpoint_to_resume(dir, args.scene, args.mode);
+    resume = checkpoint_to_resume(args, dir, progress.build_hash);
     if (resume->frame > frames)
       throw UsageError("--resume: the run in " + dir + " is at frame " + std::to_string(resume->frame) + ", past the " +
                        std::to_string(frames) + " frames asked for");
@@ -172,6 +185,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   };
   const SimOptions options{args.mode, threads};
   const int segments = resume ? resume->segments + 1 : 1;
+  progress.segments = segments;
   const ResourceUsage before = resume ? resume->usage : ResourceUsage{};
   const CpuTicks ticks_at_start = machine_ticks();
   Ensemble sim = resume ? Ensemble(std::move(scene), options, log, std::move(resume->parts), dir + "/" + kCheckpointFile)
@@ -197,7 +211,12 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
       done = s.frame;
       if (args.checkpoint_every > 0 && (done % args.checkpoint_every == 0 || done == frames)) {
         sim.restart_solvers();
-        write_checkpoint(dir + "/" + kCheckpointFile, sim, scene_hash, segments, usage());
+        progress.usage = usage();
+        try {
+          write_checkpoint(dir + "/" + kCheckpointFile, sim, progress);
+        } catch (const InputError& e) {
+          log(std::string(e.what()) + "; the run goes on, resumable from its previous checkpoint");
+        }
       }
       double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       double left = elapsed / (done - first) * (frames - done);

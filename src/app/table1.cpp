@@ -352,7 +352,7 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
         r.status = run_child(child, r.peak_kib, r.cpu_seconds);
         const CpuTicks after = machine_ticks();
         if (after.total > before.total) r.steal = static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total);
-        read_summary_usage(dir, r);  // all of a resumed run's processes, not only the last
+        if (r.status == 0) read_summary_usage(dir, r);  // all of a resumed run's processes, not only the last
         std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
         if (r.status != 0) err << "vdcloth bench table1: " << name << " in " << mode << " mode failed (exit " << r.status << ")" << std::endl;
         // The frame-end check of its meshes, after the run so it never shares the machine with one.
@@ -365,6 +365,11 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
             err << "vdcloth bench table1: " << name << " in " << mode << " mode not checked: " << e.what() << std::endl;
           }
         }
+      } else if (kept) {
+        // Done, in one process or several (some perhaps outside table1): its summary has it all.
+        r.status = 0;
+        read_summary_usage(dir, r);
+        std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
       } else {
         // status and peak memory, then CPU seconds and steal (absent in older files)
         std::ifstream status(dir + "/run_status.txt");

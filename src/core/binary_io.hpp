@@ -38,7 +38,7 @@ class BinaryWriter {
  public:
   template <class T>
   void value(const T& v) {
-    static_assert(std::is_standard_layout_v<T> || std::is_arithmetic_v<T>, "plain values only");
+    static_assert(std::is_trivially_destructible_v<T> && !std::is_pointer_v<T>, "plain values only");
     bytes_.append(reinterpret_cast<const char*>(&v), sizeof(T));
   }
   template <class T>

@@ -9,15 +9,11 @@ namespace vdc {
 namespace {
 constexpr uint32_t kMeshFormat = 1;
 
-template <class Tag>
-bool in_range(Handle<Tag> h, std::size_t capacity) {
-  return h.idx >= -1 && h.idx < static_cast<int32_t>(capacity);
-}
-
-template <class Tag, class Container>
-bool all_in_range(const Container& handles, std::size_t capacity) {
+// Every handle names an element below `capacity` (or none, -1, where `may_be_none`).
+template <class Container>
+bool all_in_range(const Container& handles, std::size_t capacity, bool may_be_none = false) {
   for (const auto& h : handles)
-    if (!in_range(Handle<Tag>(h.idx), capacity)) return false;
+    if (h.idx < (may_be_none ? -1 : 0) || h.idx >= static_cast<int32_t>(capacity)) return false;
   return true;
 }
 
@@ -78,14 +74,14 @@ Mesh Mesh::read_binary(BinaryReader& in) {
                            m.vert_faces_.size() == verts && m.edge_nodes_.size() == edges && m.edge_faces_.size() == edges &&
                            m.face_verts_.size() == faces && m.face_edges_.size() == faces;
   if (!sizes_agree) in.fail("the mesh's arrays disagree on its element counts");
-  bool ok = all_in_range<NodeTag>(m.vert_node_, nodes);
-  for (const auto& list : m.node_verts_) ok = ok && all_in_range<VertTag>(list, verts);
-  for (const auto& list : m.node_edges_) ok = ok && all_in_range<EdgeTag>(list, edges);
-  for (const auto& list : m.vert_faces_) ok = ok && all_in_range<FaceTag>(list, faces);
-  for (const auto& e : m.edge_nodes_) ok = ok && all_in_range<NodeTag>(e, nodes);
-  for (const auto& e : m.edge_faces_) ok = ok && all_in_range<FaceTag>(e, faces);
-  for (const auto& f : m.face_verts_) ok = ok && all_in_range<VertTag>(f, verts);
-  for (const auto& f : m.face_edges_) ok = ok && all_in_range<EdgeTag>(f, edges);
+  bool ok = all_in_range(m.vert_node_, nodes);
+  for (const auto& list : m.node_verts_) ok = ok && all_in_range(list, verts);
+  for (const auto& list : m.node_edges_) ok = ok && all_in_range(list, edges);
+  for (const auto& list : m.vert_faces_) ok = ok && all_in_range(list, faces);
+  for (const auto& e : m.edge_nodes_) ok = ok && all_in_range(e, nodes);
+  for (const auto& e : m.edge_faces_) ok = ok && all_in_range(e, faces, true);  // a boundary edge has one face
+  for (const auto& f : m.face_verts_) ok = ok && all_in_range(f, verts);
+  for (const auto& f : m.face_edges_) ok = ok && all_in_range(f, edges);
   if (!ok) in.fail("the mesh refers to an element it does not have");
   m.live_nodes_ = count_alive(m.node_alive_);
   m.live_verts_ = count_alive(m.vert_alive_);

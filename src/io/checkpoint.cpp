@@ -1,5 +1,9 @@
 #include "io/checkpoint.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +16,7 @@ namespace vdc {
 
 namespace {
 const std::string kMagic = "vdcloth checkpoint";
-constexpr uint32_t kFormat = 1;
+constexpr uint32_t kFormat = 2;
 
 std::string read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -28,19 +32,23 @@ uint64_t file_hash(const std::string& path) {
   return fnv1a64(bytes.data(), bytes.size());
 }
 
-void write_checkpoint(const std::string& path, const Ensemble& run, uint64_t scene_hash, int segments, const ResourceUsage& usage) {
+uint64_t executable_hash() { return file_hash("/proc/self/exe"); }
+
+void write_checkpoint(const std::string& path, const Ensemble& run, const Checkpoint& c) {
   BinaryWriter out;
   out.string(kMagic);
   out.value(kFormat);
-  out.value(scene_hash);
+  out.value(c.scene_hash);
+  out.value(c.build_hash);
+  out.value<int32_t>(c.checkpoint_every);
   out.string(sim_mode_name(run.options().mode));
   out.value<int32_t>(run.frame());
-  out.value<int32_t>(segments);
-  out.value(usage.wall_seconds);
-  out.value(usage.cpu_seconds);
-  out.value<int64_t>(usage.peak_kib);
-  out.value<int64_t>(usage.machine.total);
-  out.value<int64_t>(usage.machine.steal);
+  out.value<int32_t>(c.segments);
+  out.value(c.usage.wall_seconds);
+  out.value(c.usage.cpu_seconds);
+  out.value<int64_t>(c.usage.peak_kib);
+  out.value<int64_t>(c.usage.machine.total);
+  out.value<int64_t>(c.usage.machine.steal);
   out.value<uint64_t>(run.parts().size());
   for (const auto& part : run.parts()) {
     out.value<uint64_t>(part->scene().garments.size());
@@ -53,14 +61,16 @@ void write_checkpoint(const std::string& path, const Ensemble& run, uint64_t sce
   out.value(sum);
 
   const std::string tmp = path + ".tmp";
-  {
-    std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-    file.write(out.bytes().data(), static_cast<std::streamsize>(out.bytes().size()));
-    if (!file) throw InputError(tmp, "", "cannot write");
-  }
+  std::FILE* file = std::fopen(tmp.c_str(), "wb");
+  bool ok = file != nullptr && std::fwrite(out.bytes().data(), 1, out.bytes().size(), file) == out.bytes().size();
+  ok = file != nullptr && std::fflush(file) == 0 && ok && ::fsync(::fileno(file)) == 0;
+  if (file != nullptr && std::fclose(file) != 0) ok = false;
   std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw InputError(path, "", "cannot write: " + ec.message());
+  if (ok) std::filesystem::rename(tmp, path, ec);
+  if (!ok || ec) {
+    std::filesystem::remove(tmp, ec);
+    throw InputError(path, "", std::string("cannot write: ") + (ok ? ec.message() : std::strerror(errno)));
+  }
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
@@ -80,6 +90,8 @@ Checkpoint read_checkpoint(const std::string& path) {
     if (const auto format = in.value<uint32_t>(); format != kFormat)
       in.fail("checkpoint format " + std::to_string(format) + ", this vdcloth reads format " + std::to_string(kFormat));
     c.scene_hash = in.value<uint64_t>();
+    c.build_hash = in.value<uint64_t>();
+    c.checkpoint_every = in.value<int32_t>();
     c.mode = in.string();
     c.frame = in.value<int32_t>();
     c.segments = in.value<int32_t>();
@@ -88,7 +100,9 @@ Checkpoint read_checkpoint(const std::string& path) {
     c.usage.peak_kib = static_cast<long>(in.value<int64_t>());
     c.usage.machine.total = in.value<int64_t>();
     c.usage.machine.steal = in.value<int64_t>();
-    if (c.frame < 0 || c.segments < 1) in.fail("frame " + std::to_string(c.frame) + " of segment " + std::to_string(c.segments));
+    if (c.frame < 0 || c.segments < 1 || c.segments > 1'000'000 || c.checkpoint_every < 1)
+      in.fail("frame " + std::to_string(c.frame) + ", segment " + std::to_string(c.segments) + ", interval " +
+              std::to_string(c.checkpoint_every) + ": not a checkpoint's");
     const auto parts = in.value<uint64_t>();
     for (uint64_t p = 0; p < parts; ++p) {
       ResumePoint point;

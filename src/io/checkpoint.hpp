@@ -15,6 +15,8 @@ inline constexpr const char* kCheckpointFile = "checkpoint.bin";
 
 struct Checkpoint {
   uint64_t scene_hash = 0;  // file_hash of the scene file the run was made from
+  uint64_t build_hash = 0;  // executable_hash of the vdcloth that wrote it
+  int checkpoint_every = 0; // the run's interval: the solvers restart at each checkpoint
   std::string mode;         // sim_mode_name
   int frame = 0;
   int segments = 1;         // processes the run has been made in, this one included
@@ -24,10 +26,13 @@ struct Checkpoint {
 
 // FNV-1a of a file's bytes. Throws InputError when it cannot be read.
 uint64_t file_hash(const std::string& path);
+// file_hash of this program (/proc/self/exe): another build may simulate differently.
+uint64_t executable_hash();
 
-// Writes the checkpoint of `run` at its current frame to `path`, through a temporary file
-// renamed into place, so a run stopped while writing keeps its previous checkpoint.
-void write_checkpoint(const std::string& path, const Ensemble& run, uint64_t scene_hash, int segments, const ResourceUsage& usage);
+// Writes `c` (but its parts: those come from `run`, at its current frame) to `path`, through a
+// temporary file flushed to disk and renamed into place, so a run stopped while writing keeps
+// its previous checkpoint. Throws InputError, leaving no temporary file, when it cannot.
+void write_checkpoint(const std::string& path, const Ensemble& run, const Checkpoint& c);
 
 // Reads a checkpoint; throws InputError naming the file (and the byte) when it is missing,
 // damaged or not a checkpoint.

@@ -86,19 +86,25 @@ RunOutput::RunOutput(const std::string& dir, int resume_at) : dir_(dir) {
   if (static_cast<int>(kept.size()) < resume_at)
     throw InputError(stats_path, "", "ends at frame " + std::to_string(kept.size()) + ", before the checkpoint's frame " + std::to_string(resume_at));
   in.close();
-  // Frames past the checkpoint came from the stopped process; they are made again.
-  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames")) {
-    static const std::regex name(R"(^(cloth|obstacle)_.+\.([0-9]{4,})\.(obj|ply)$)");
+  // The kept rows go in first (written aside, then renamed over), so the run stays resumable
+  // whenever this stops; then what the stopped process made after the checkpoint goes.
+  {
+    std::ofstream rows(stats_path + ".tmp", std::ios::trunc);
+    rows << kStatsHeader << "\n";
+    for (const auto& line : kept) rows << line << "\n";
+    if (!rows.flush()) throw InputError(stats_path + ".tmp", "", "cannot write");
+  }
+  fs::rename(stats_path + ".tmp", stats_path, ec);
+  if (ec) throw InputError(stats_path, "", "cannot write: " + ec.message());
+  static const std::regex name(R"(^(cloth|obstacle)_.+\.([0-9]{4,9})\.(obj|ply)$)");
+  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames", ec)) {
     std::smatch m;
     const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, m, name) && std::stoi(m[2].str()) > resume_at) fs::remove(entry.path());
+    if (std::regex_match(file, m, name) && std::stoi(m[2].str()) > resume_at) fs::remove(entry.path(), ec);
   }
   fs::remove(fs::path(dir) / "summary.json", ec);
-  stats_.open(stats_path, std::ios::trunc);
+  stats_.open(stats_path, std::ios::app);
   if (!stats_) throw InputError(stats_path, "", "cannot write");
-  stats_ << kStatsHeader << "\n";
-  for (const auto& line : kept) stats_ << line << "\n";
-  stats_ << std::flush;
 }
 
 void RunOutput::tally(int faces, double seconds) {

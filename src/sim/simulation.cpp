@@ -64,20 +64,39 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePo
     throw InputError(source, "", "holds " + std::to_string(from.garments.size()) + " garment meshes where the scene has " +
                                      std::to_string(scene_.garments.size()));
   for (std::size_t g = 0; g < from.garments.size(); ++g) {
-    if (from.names[g] != scene_.garments[g].name)
-      throw InputError(source, "", "has garment '" + from.names[g] + "' where the scene has '" + scene_.garments[g].name + "'");
-    const auto& handle = from.garments[g].node_attrs();
-    if (!handle.has(kHandleAttr) || !handle.has(kAnchorAttr))
-      throw InputError(source, scene_.garments[g].name, "the garment's mesh has no handle attributes");
-    scene_.garments[g].mesh = std::move(from.garments[g]);
+    auto& garment = scene_.garments[g];
+    const Mesh& mesh = from.garments[g];
+    if (from.names[g] != garment.name)
+      throw InputError(source, "", "has garment '" + from.names[g] + "' where the scene has '" + garment.name + "'");
+    if (!mesh.is_compact()) throw InputError(source, garment.name, "the garment's mesh has unused slots, which a checkpoint never has");
+    // What the simulation reads from the mesh's attributes must be there, of its type and range.
+    try {
+      const auto& which = mesh.node_attrs().get<int32_t>(kHandleAttr);
+      mesh.node_attrs().get<Vec3>(kAnchorAttr);
+      for (NodeId n : mesh.nodes())
+        if (which[n] < -1 || which[n] >= static_cast<int32_t>(garment.handles.size()))
+          throw InputError(source, garment.name, "node " + std::to_string(n.idx) + " names handle " + std::to_string(which[n]) +
+                                                     " of the garment's " + std::to_string(garment.handles.size()));
+    } catch (const std::logic_error& e) {
+      throw InputError(source, garment.name, std::string("the garment's mesh does not fit the scene: ") + e.what());
+    }
+    garment.mesh = std::move(from.garments[g]);
   }
   for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
+  place_obstacles();
+  try {
+    rebuild();
+  } catch (const std::logic_error& e) {
+    throw InputError(source, "", std::string("the garment meshes do not fit the scene: ") + e.what());
+  }
+}
+
+void Simulation::place_obstacles() {
   for (auto& o : scene_.obstacles)
     if (o.moves()) {
       const std::vector<Vec3> x = o.positions_at(time());
       for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[static_cast<std::size_t>(n.idx)];
     }
-  rebuild();
 }
 
 void Simulation::remesh_garments(FrameStats& stats) {
@@ -340,11 +359,7 @@ FrameStats Simulation::step_frame() {
   for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
   ++frame_;
   scatter_state();
-  for (auto& o : scene_.obstacles)
-    if (o.moves()) {
-      const std::vector<Vec3> x = o.positions_at(time());
-      for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[static_cast<std::size_t>(n.idx)];
-    }
+  place_obstacles();
   stats.frame = frame_;
   stats.faces = num_faces();
   stats.vertices = num_vertices();

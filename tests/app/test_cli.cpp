@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <fstream>
@@ -16,6 +17,7 @@
 
 #include "app/cli.hpp"
 #include "app/table1.hpp"
+#include "core/binary_io.hpp"
 #include "core/error.hpp"
 
 namespace vdc {
@@ -385,6 +387,19 @@ TEST_F(CliTest, ResumeRefusesWhatItCannotGoOnFromAndLeavesTheRunAlone) {
       {"a cut-off file", [&] { std::ofstream(checkpoint, std::ios::binary) << good.substr(0, good.size() / 3); }, {}, {"checkpoint.bin"}},
       {"not a checkpoint", [&] { std::ofstream(checkpoint, std::ios::binary) << "frame,faces\n1,2\n"; }, {}, {"checkpoint.bin", "not a vdcloth checkpoint"}},
       {"an edited scene", [&] { write("hang.json", std::string(kHangingSheet).replace(1, 11, "\"frames\": 9")); }, {}, {"another version of"}},
+      {"another build",
+       [&] {
+         // The executable's hash follows the magic (8 + 18 bytes), the format (4) and the scene's
+         // hash (8); the checksum over everything before it is made again.
+         std::string b = good;
+         b[8 + 18 + 4 + 8 + 2] ^= 0x01;
+         const uint64_t sum = fnv1a64(b.data(), b.size() - 8);
+         std::memcpy(b.data() + b.size() - 8, &sum, 8);
+         std::ofstream(checkpoint, std::ios::binary) << b;
+       },
+       {},
+       {"checkpoint.bin", "another build of vdcloth"}},
+      {"another interval", [] {}, {"--checkpoint-every", "5"}, {"checkpointed every 10 frames", "--checkpoint-every 10"}},
   };
   for (const Case& c : cases) {
     std::ofstream(checkpoint, std::ios::binary) << good;
