@@ -118,6 +118,11 @@ void read_check_status(const std::string& dir, Run& r) {
   else r.check.reset();
 }
 
+// RUN/run_status.txt: exit status, peak memory, CPU seconds and steal, read back by --tables-only.
+void write_run_status(const std::string& dir, const Run& r) {
+  std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
+}
+
 // The run in `dir` finished all of its `frames` (its summary.json says so).
 bool run_is_done(const std::string& dir, int frames) {
   std::ifstream in(dir + "/summary.json");
@@ -353,7 +358,7 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
         const CpuTicks after = machine_ticks();
         if (after.total > before.total) r.steal = static_cast<double>(after.steal - before.steal) / static_cast<double>(after.total - before.total);
         if (r.status == 0) read_summary_usage(dir, r);  // all of a resumed run's processes, not only the last
-        std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
+        write_run_status(dir, r);
         if (r.status != 0) err << "vdcloth bench table1: " << name << " in " << mode << " mode failed (exit " << r.status << ")" << std::endl;
         // The frame-end check of its meshes, after the run so it never shares the machine with one.
         fs::remove(dir + "/check_status.txt", ec);
@@ -369,7 +374,7 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
         // Done, in one process or several (some perhaps outside table1): its summary has it all.
         r.status = 0;
         read_summary_usage(dir, r);
-        std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
+        write_run_status(dir, r);
       } else {
         // status and peak memory, then CPU seconds and steal (absent in older files)
         std::ifstream status(dir + "/run_status.txt");

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <regex>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,18 @@ const char* const kStatsHeader =
     "remesh_seconds,splits,flips,collapses,collision_seconds,impacts,collision_iterations,collision_fallbacks,kinetic_energy,gravitational_energy,elastic_energy,"
     "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds,velocity_clamps";
 
+// A frame file's name, <mesh>.<frame>.<extension> with mesh cloth_* or obstacle_*, taken apart.
+struct FrameFileName {
+  std::string mesh, extension;
+  int frame = 0;
+};
+std::optional<FrameFileName> parse_frame_file(const std::string& file) {
+  static const std::regex name(R"(^((cloth|obstacle)_.+)\.([0-9]{4,9})\.(obj|ply)$)");
+  std::smatch m;
+  if (!std::regex_match(file, m, name)) return std::nullopt;
+  return FrameFileName{m[1].str(), m[4].str(), std::stoi(m[3].str())};
+}
+
 std::string frame_file(const std::string& dir, const std::string& kind, const std::string& name, int frame,
                        const std::string& extension = ".obj") {
   char num[16];
@@ -33,13 +46,10 @@ std::map<int, FrameFiles> read_frame_files(const std::string& run_dir) {
   const fs::path dir = fs::path(run_dir) / "frames";
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) throw InputError(dir.string(), "", "no such directory (is " + run_dir + " the output of vdcloth run?)");
-  static const std::regex name(R"(^((cloth|obstacle)_.+)\.([0-9]{4,})\.obj$)");
   std::map<int, FrameFiles> frames;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    std::smatch m;
-    const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, m, name)) frames[std::stoi(m[3].str())][m[1].str()] = entry.path().string();
-  }
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (const auto f = parse_frame_file(entry.path().filename().string()); f && f->extension == "obj")
+      frames[f->frame][f->mesh] = entry.path().string();
   if (frames.empty()) throw InputError(dir.string(), "", "no frame meshes (was the run made with --mesh-every 0?)");
   return frames;
 }
@@ -96,12 +106,8 @@ RunOutput::RunOutput(const std::string& dir, int resume_at) : dir_(dir) {
   }
   fs::rename(stats_path + ".tmp", stats_path, ec);
   if (ec) throw InputError(stats_path, "", "cannot write: " + ec.message());
-  static const std::regex name(R"(^(cloth|obstacle)_.+\.([0-9]{4,9})\.(obj|ply)$)");
-  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames", ec)) {
-    std::smatch m;
-    const std::string file = entry.path().filename().string();
-    if (std::regex_match(file, m, name) && std::stoi(m[2].str()) > resume_at) fs::remove(entry.path(), ec);
-  }
+  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames", ec))
+    if (const auto f = parse_frame_file(entry.path().filename().string()); f && f->frame > resume_at) fs::remove(entry.path(), ec);
   fs::remove(fs::path(dir) / "summary.json", ec);
   stats_.open(stats_path, std::ios::app);
   if (!stats_) throw InputError(stats_path, "", "cannot write");

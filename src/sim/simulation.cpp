@@ -40,9 +40,7 @@ CollisionMesh collision_mesh(const Mesh& mesh) {
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
     : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
-  if (options_.mode == SimMode::View && !scene_.camera)
-    throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block to the scene");
-  for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
+  check_options_and_collect_obstacles();
   for (auto& g : scene_.garments) {
     if (!g.mesh.is_compact()) g.mesh.compact();
     if (options_.mode == SimMode::Fixed) {
@@ -58,8 +56,7 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePoint from, const std::string& source)
     : scene_(std::move(scene)), options_(options), log_(std::move(log)), frame_(from.frame) {
-  if (options_.mode == SimMode::View && !scene_.camera)
-    throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block to the scene");
+  check_options_and_collect_obstacles();
   if (from.garments.size() != scene_.garments.size() || from.names.size() != from.garments.size())
     throw InputError(source, "", "holds " + std::to_string(from.garments.size()) + " garment meshes where the scene has " +
                                      std::to_string(scene_.garments.size()));
@@ -82,13 +79,18 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePo
     }
     garment.mesh = std::move(from.garments[g]);
   }
-  for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
   place_obstacles();
   try {
     rebuild();
   } catch (const std::logic_error& e) {
     throw InputError(source, "", std::string("the garment meshes do not fit the scene: ") + e.what());
   }
+}
+
+void Simulation::check_options_and_collect_obstacles() {
+  if (options_.mode == SimMode::View && !scene_.camera)
+    throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block to the scene");
+  for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
 }
 
 void Simulation::place_obstacles() {

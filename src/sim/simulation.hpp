@@ -92,6 +92,7 @@ class Simulation {
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
   // Removes interpenetrations that exist at the current time (start-up, after remeshing).
   void untangle_cloth(FrameStats& stats);
+  void check_options_and_collect_obstacles();  // both constructors' first step
   void place_obstacles();               // moving obstacles' meshes at time()
   void gather_state();                  // meshes -> x_, v_
   void scatter_state();                 // x_, v_ -> meshes
