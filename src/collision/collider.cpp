@@ -52,13 +52,23 @@ int32_t find(std::vector<int32_t>& parent, int32_t i) {
 }  // namespace
 
 Collider::Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::vector<CollisionMesh> obstacles, int32_t num_nodes)
-    : cloth_faces_(cloth_faces), obstacles_(std::move(obstacles)), num_nodes_(num_nodes) {
-  edges_of(cloth_faces_, cloth_edges_, face_edges_);
+    : obstacles_(std::move(obstacles)) {
   obstacle_edges_.resize(obstacles_.size());
   obstacle_face_edges_.resize(obstacles_.size());
   for (std::size_t o = 0; o < obstacles_.size(); ++o) edges_of(obstacles_[o].faces, obstacle_edges_[o], obstacle_face_edges_[o]);
   obstacle_face_tree_.resize(obstacles_.size());
   obstacle_edge_tree_.resize(obstacles_.size());
+  set_cloth(cloth_faces, num_nodes);
+}
+
+void Collider::set_cloth(const std::vector<std::array<int32_t, 3>>& cloth_faces, int32_t num_nodes) {
+  cloth_faces_ = cloth_faces;
+  num_nodes_ = num_nodes;
+  cloth_edges_.clear();
+  face_edges_.clear();
+  edges_of(cloth_faces_, cloth_edges_, face_edges_);
+  cloth_face_tree_ = RefitBvh();
+  cloth_edge_tree_ = RefitBvh();
 }
 
 CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd& x_end, const std::vector<double>& mass,

@@ -42,6 +42,10 @@ class Collider {
   // Cloth faces (global node ids) and obstacle meshes (faces into their own vertex arrays).
   Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::vector<CollisionMesh> obstacles, int32_t num_nodes);
 
+  // New cloth faces after remeshing. The obstacles' edges and hierarchies stay: an obstacle's
+  // topology never changes, and its hierarchies go on refitting as it moves.
+  void set_cloth(const std::vector<std::array<int32_t, 3>>& cloth_faces, int32_t num_nodes);
+
   // Moves x_end (3n) so that no impact remains between x_start and x_end. `mass` per node;
   // `fixed` marks nodes whose end position must not change (handles). obstacle_start/end hold
   // each obstacle's vertices at the start and end of the step.

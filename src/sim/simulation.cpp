@@ -94,17 +94,27 @@ void Simulation::check_options_and_collect_obstacles() {
 }
 
 void Simulation::place_obstacles() {
-  for (auto& o : scene_.obstacles)
-    if (o.moves()) {
-      const std::vector<Vec3> x = o.positions_at(time());
-      for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[static_cast<std::size_t>(n.idx)];
-    }
+  const std::vector<std::vector<Vec3>> x = obstacle_positions(time());
+  for (std::size_t i = 0; i < scene_.obstacles.size(); ++i) {
+    auto& o = scene_.obstacles[i];
+    if (o.moves())
+      for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[i][static_cast<std::size_t>(n.idx)];
+  }
+}
+
+std::vector<std::vector<Vec3>> Simulation::obstacle_positions(double t) {
+  for (const auto& kept : obstacle_positions_)
+    if (!kept.x.empty() && kept.t == t) return kept.x;
+  ObstaclePositions fresh{t, {}};
+  for (const auto& o : scene_.obstacles) fresh.x.push_back(o.positions_at(t));
+  obstacle_positions_[1] = std::move(obstacle_positions_[0]);
+  obstacle_positions_[0] = fresh;
+  return fresh.x;
 }
 
 void Simulation::remesh_garments(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<std::vector<Vec3>> obstacle_x;
-  for (const auto& o : scene_.obstacles) obstacle_x.push_back(o.positions_at(time()));
+  const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
   // For the proximity criterion the other garments are obstacles too: a layer's chords must not
   // sag through the layer beside it any more than through the body.
   std::vector<CollisionMesh> garment_meshes;
@@ -154,8 +164,7 @@ void Simulation::untangle_cloth(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
   for (const auto& c : constraints(time(), scene_.frame_time)) fixed[static_cast<std::size_t>(c.node)] = 1;
-  std::vector<std::vector<Vec3>> obstacle_x;
-  for (const auto& o : scene_.obstacles) obstacle_x.push_back(o.positions_at(time()));
+  const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
   UntangleParams params;
   params.thickness = scene_.collision.thickness;
   params.step = scene_.collision.thickness;
@@ -177,6 +186,8 @@ void Simulation::untangle_cloth(FrameStats& stats) {
 }
 
 void Simulation::rebuild() {
+  // Remeshing keeps the obstacles' hierarchies in the collider; a restart starts them afresh too.
+  const bool restart = restart_pending_ || !collider_;
   restart_pending_ = false;
   model_ = ClothModel();
   offsets_.clear();
@@ -184,7 +195,8 @@ void Simulation::rebuild() {
   LinearSolverParams solver_params = scene_.solver.params;
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
-  collider_ = std::make_unique<Collider>(model_.face_nodes, obstacle_meshes_, model_.num_nodes);
+  if (restart) collider_ = std::make_unique<Collider>(model_.face_nodes, obstacle_meshes_, model_.num_nodes);
+  else collider_->set_cloth(model_.face_nodes, model_.num_nodes);
   gather_state();
 }
 
@@ -243,11 +255,7 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats, doubl
   const std::vector<VelocityConstraint> held = constraints(t + h, h);
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
   for (const auto& c : held) fixed[static_cast<std::size_t>(c.node)] = 1;
-  ObstacleMotion obstacles;
-  for (const auto& o : scene_.obstacles) {
-    obstacles.start.push_back(o.positions_at(t));
-    obstacles.end.push_back(o.positions_at(t + h));
-  }
+  ObstacleMotion obstacles{obstacle_positions(t), obstacle_positions(t + h)};
   const std::vector<ContactTerm> contacts = proximity_contacts(fixed, obstacles, h, stats);
   const Eigen::VectorXd x_start = x_, v_start = v_;
   const double limit = scene_.solver.max_velocity_change;

@@ -1,6 +1,7 @@
 // Runs a scene frame by frame: substeps of the implicit integrator, handles driving their nodes,
 // and recovery from a failed step by halving it (logged), so a hard frame never ends a run.
 #pragma once
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -94,6 +95,9 @@ class Simulation {
   void untangle_cloth(FrameStats& stats);
   void check_options_and_collect_obstacles();  // both constructors' first step
   void place_obstacles();               // moving obstacles' meshes at time()
+  // Every obstacle's vertex positions at time t. The last two times asked for are remembered:
+  // each step starts at the time the one before ended, and skinning a body is not free.
+  std::vector<std::vector<Vec3>> obstacle_positions(double t);
   void gather_state();                  // meshes -> x_, v_
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
@@ -124,6 +128,11 @@ class Simulation {
   std::vector<int32_t> offsets_;  // first model node of each garment
   std::unique_ptr<ImplicitIntegrator> integrator_;
   std::vector<CollisionMesh> obstacle_meshes_;  // the obstacles' faces, for collisions and sizing
+  struct ObstaclePositions {
+    double t = 0;
+    std::vector<std::vector<Vec3>> x;  // empty: not computed yet
+  };
+  std::array<ObstaclePositions, 2> obstacle_positions_;  // the most recent first
   std::unique_ptr<Collider> collider_;
   Eigen::VectorXd x_, v_;
 };

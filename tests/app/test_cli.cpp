@@ -53,7 +53,7 @@ class CliTest : public ::testing::Test {
   }
   std::string out_dir() const { return (dir_ / "out").string(); }
   // Runs a hanging sheet six frames in `mode`, whole and in pieces resumed from checkpoints.
-  void resumed_run_matches(const std::string& mode);
+  void resumed_run_matches(const std::string& mode, bool with_ball);
 
   fs::path dir_;
   std::ostringstream out_, err_;
@@ -286,6 +286,25 @@ std::string read_file(const fs::path& path) {
 }
 
 // stats.csv without the columns that time the run (named *seconds), which differ run to run.
+// The value in a named column of stats.csv at a frame.
+double stats_column(const fs::path& path, const std::string& column, int frame) {
+  std::ifstream in(path);
+  std::vector<std::string> names;
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream cells(line);
+    std::vector<std::string> row;
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(cell);
+    if (names.empty()) {
+      names = row;
+      continue;
+    }
+    const auto c = static_cast<std::size_t>(std::find(names.begin(), names.end(), column) - names.begin());
+    if (c < row.size() && std::stoi(row[0]) == frame) return std::stod(row[c]);
+  }
+  ADD_FAILURE() << path << " has no " << column << " at frame " << frame;
+  return 0;
+}
+
 std::vector<std::string> stats_without_timings(const fs::path& path) {
   std::ifstream in(path);
   std::vector<std::string> rows;
@@ -306,21 +325,32 @@ const char* kHangingSheet =
     R"({"frames": 6, "substeps": 2, "remeshing": {"size": [0.06, 0.5]}, "garments": [{"name": "s", )"
     R"("mesh": {"grid": {"size": [1, 1], "cells": [4, 4]}}, "material": "cotton.json", "handles": [{"uv": [[0, 1], [1, 1]]}]}]})";
 
-// Remeshed every frame (meshes and attributes must come back exactly), and fixed with a linear
-// solver that carries a preconditioner and a first guess from step to step (they must restart
-// at the checkpoint, in the run as in its resumption).
+// A ball rising into the falling sheet from frame 3 on: collisions against an obstacle whose
+// hierarchies the collider keeps across remeshing (they must restart at the checkpoint too).
+const char* kRisingBall =
+    R"("obstacles": [{"name": "ball", "mesh": {"sphere": {"radius": 0.2, "subdivisions": 2}}, )"
+    R"("transform": {"translate": [0.5, -0.4, -0.35]}, )"
+    R"("motion": {"translate": [{"time": 0, "offset": [0, 0, 0]}, {"time": 0.24, "offset": [0, 0.25, 0]}]}}], )";
+
+// Remeshed every frame (meshes and attributes must come back exactly), with and without an
+// obstacle, and fixed with a linear solver that carries a preconditioner and a first guess from
+// step to step (they must restart at the checkpoint, in the run as in its resumption).
 TEST_F(CliTest, AResumedRunIsTheRunThatNeverStopped) {
   for (const std::string mode : {"adaptive", "fixed"}) {
     SCOPED_TRACE(mode);
-    resumed_run_matches(mode);
+    resumed_run_matches(mode, false);
   }
+  SCOPED_TRACE("adaptive, with a ball");
+  resumed_run_matches("adaptive", true);
 }
 
-void CliTest::resumed_run_matches(const std::string& mode) {
+void CliTest::resumed_run_matches(const std::string& mode, bool with_ball) {
   std::string scene = kHangingSheet;
   if (mode == "fixed") scene.replace(1, 0, R"("solver": {"linear": "cholmod-pcg"}, )");
-  const std::string scene_path = write("hang.json", scene);
-  const fs::path whole = dir_ / (mode + "_whole"), pieces = dir_ / (mode + "_pieces");
+  if (with_ball) scene.replace(1, 0, kRisingBall);
+  const std::string name = mode + (with_ball ? "_ball" : "");
+  const std::string scene_path = write(name + ".json", scene);
+  const fs::path whole = dir_ / (name + "_whole"), pieces = dir_ / (name + "_pieces");
   auto run_to = [&](const fs::path& out, std::vector<std::string> extra) {
     std::vector<std::string> args{"run", scene_path, "--mode", mode, "--out", out.string(), "--threads", "1", "--checkpoint-every", "2"};
     args.insert(args.end(), extra.begin(), extra.end());
@@ -330,7 +360,7 @@ void CliTest::resumed_run_matches(const std::string& mode) {
   // In pieces: to frame 2 (a checkpoint), on to frame 3 (another), then back to the checkpoint
   // of frame 2, as if the process had died at frame 3 before writing its own.
   ASSERT_EQ(run_to(pieces, {"--frames", "2"}), kExitOk) << err_.str();
-  const fs::path at2 = dir_ / (mode + "_at2.bin");
+  const fs::path at2 = dir_ / (name + "_at2.bin");
   fs::copy_file(pieces / "checkpoint.bin", at2);
   ASSERT_EQ(run_to(pieces, {"--frames", "3", "--resume"}), kExitOk) << err_.str();
   ASSERT_TRUE(fs::exists(pieces / "frames" / "cloth_s.0003.obj"));
@@ -339,8 +369,8 @@ void CliTest::resumed_run_matches(const std::string& mode) {
   EXPECT_NE(out_.str().find("resumed at frame 2"), std::string::npos) << out_.str();
 
   for (int f = 0; f <= 6; ++f) {
-    const std::string name = "cloth_s.000" + std::to_string(f) + ".obj";
-    EXPECT_EQ(read_file(pieces / "frames" / name), read_file(whole / "frames" / name)) << name;
+    const std::string file = "cloth_s.000" + std::to_string(f) + ".obj";
+    EXPECT_EQ(read_file(pieces / "frames" / file), read_file(whole / "frames" / file)) << file;
   }
   const std::vector<std::string> rows = stats_without_timings(whole / "stats.csv");
   ASSERT_EQ(rows.size(), 7u);
@@ -349,6 +379,10 @@ void CliTest::resumed_run_matches(const std::string& mode) {
   auto faces = [](const std::string& row) { return std::stoi(row.substr(row.find(',') + 1)); };
   if (mode == "adaptive") {
     EXPECT_NE(faces(rows[1]), faces(rows[6])) << rows[1] << " / " << rows[6];
+  }
+  // The ball met the sheet after the checkpoint of frame 2.
+  if (with_ball) {
+    EXPECT_GT(stats_column(whole / "stats.csv", "impacts", 5), 0);
   }
   nlohmann::json summary = nlohmann::json::parse(std::ifstream(pieces / "summary.json"));
   EXPECT_EQ(summary["status"], "done");
