@@ -17,6 +17,8 @@ namespace {
 // supernode; on a 2-core machine the thread hand-offs cost more than the arithmetic (a 400
 // MFlop factorization took 120 ms idle and seconds under load). Called from inside an active
 // parallel region, with one active level allowed, those nested regions run on one thread.
+// (Not by allowing no active level around f instead: Debian's OpenBLAS, the OpenMP build, then
+// waits forever in sched_yield for a team member it never gets.)
 template <class F>
 void cholmod_serial(F&& f) {
   omp_set_max_active_levels(1);
