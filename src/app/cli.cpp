@@ -203,6 +203,17 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     return process_usage(before, ticks_at_start, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   };
   int done = first;
+  // A run that cannot go on says why and how far it got, in summary.json (if it can still be
+  // written) and on the error stream.
+  auto stop_part_way = [&](const std::string& what, const std::string& why) {
+    if (line_open) out << "\n";
+    try {
+      output.write_summary(sim, "failed", what + ": " + why, usage(), segments, done, threads);
+    } catch (const InputError&) {
+    }
+    err << "vdcloth: " << what << ": " << why << " (frames 0 to " << done << " are in " << dir << ")" << std::endl;
+    return kExitSimulationFailed;
+  };
   try {
     while (done < frames) {
       FrameStats s = sim.step_frame();
@@ -231,10 +242,9 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
       }
     }
   } catch (const SimulationError& e) {
-    if (line_open) out << "\n";
-    output.write_summary(sim, "failed", e.what(), usage(), segments, done, threads);
-    err << "vdcloth: simulation failed: " << e.what() << " (frames 0 to " << done << " are in " << dir << ")" << std::endl;
-    return kExitSimulationFailed;
+    return stop_part_way("simulation failed", e.what());
+  } catch (const InputError& e) {  // only the output's files fail this way once the run is going
+    return stop_part_way("writing the results failed", e.what());
   }
   if (line_open) out << "\n";
   const ResourceUsage total = usage();

@@ -18,7 +18,7 @@ namespace vdc {
 struct ImpactConstraint {
   std::array<int32_t, 4> nodes;
   std::array<double, 4> weights;
-  std::array<Vec3, 4> fixed;  // used where nodes[j] < 0
+  std::array<Vec3, 4> fixed{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // used where nodes[j] < 0
   Vec3 normal;                // unit
   // Displacement over the step of the fixed points (obstacle or handle), weighted by |w_j|;
   // zero when all points are movable. The fallback moves a stuck zone with it.

@@ -7,12 +7,8 @@
 
 namespace vdc {
 
-namespace {
-double orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).cross(c - a).dot(d - a); }
-}  // namespace
-
 bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {
-  double sp = orient(a, b, c, p), sq = orient(a, b, c, q);
+  double sp = orient3(a, b, c, p), sq = orient3(a, b, c, q);
   // Sides within rounding of the plane count as on it (1e-12 of the lengths involved), so that
   // triangles of one flat sheet, which rounding leaves a few ulps off each other's plane, are
   // not taken for crossings.
@@ -21,7 +17,7 @@ bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const
   if (std::abs(sq) <= tol) sq = 0;
   if ((sp > 0 && sq > 0) || (sp < 0 && sq < 0) || (sp == 0 && sq == 0)) return false;
   // The segment's line passes through the triangle when it sees the three edges turning the same way.
-  const double e0 = orient(p, q, a, b), e1 = orient(p, q, b, c), e2 = orient(p, q, c, a);
+  const double e0 = orient3(p, q, a, b), e1 = orient3(p, q, b, c), e2 = orient3(p, q, c, a);
   return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
 }
 

@@ -16,8 +16,6 @@ namespace {
 // Weight of the shorter-side term against the contour gradient (whose terms are unit vectors).
 constexpr double kLocalWeight = 0.1;
 
-double orient(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) { return (b - a).cross(c - a).dot(d - a); }
-
 // Edge (i, j) crossing face (a, b, c) at edge parameter t, face barycentrics `bary`.
 struct Crossing {
   std::array<int32_t, 2> edge;
@@ -30,8 +28,8 @@ struct Crossing {
 std::optional<Crossing> edge_through_face(std::array<int32_t, 2> edge, std::array<int32_t, 3> face, const Vec3& p, const Vec3& q,
                                           const Vec3& a, const Vec3& b, const Vec3& c) {
   if (!segment_crosses_triangle(p, q, a, b, c)) return std::nullopt;
-  const double sp = orient(a, b, c, p), sq = orient(a, b, c, q);
-  const double e0 = orient(p, q, a, b), e1 = orient(p, q, b, c), e2 = orient(p, q, c, a);
+  const double sp = orient3(a, b, c, p), sq = orient3(a, b, c, q);
+  const double e0 = orient3(p, q, a, b), e1 = orient3(p, q, b, c), e2 = orient3(p, q, c, a);
   const double sum = e0 + e1 + e2;
   if (sp == sq || sum == 0) return std::nullopt;
   Crossing k;

@@ -58,12 +58,13 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   std::error_code ec;
   fs::create_directories(fs::path(dir) / "frames", ec);
   if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
-  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames")) {
+  for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames", ec)) {
     const std::string name = entry.path().filename().string();
     if ((entry.path().extension() == ".obj" || entry.path().extension() == ".ply") &&
-        (name.rfind("cloth_", 0) == 0 || name.rfind("obstacle_", 0) == 0))
-      fs::remove(entry.path());
+        (name.rfind("cloth_", 0) == 0 || name.rfind("obstacle_", 0) == 0) && (fs::remove(entry.path(), ec), ec))
+      throw InputError(entry.path().string(), "", "cannot remove this frame of an earlier run: " + ec.message());
   }
+  if (ec) throw InputError(dir + "/frames", "", "cannot list: " + ec.message());
   fs::remove(fs::path(dir) / "summary.json", ec);
   // A checkpoint left by an earlier run must not be resumed into this one.
   fs::remove(fs::path(dir) / kCheckpointFile, ec);
@@ -148,6 +149,7 @@ void RunOutput::write_stats_row(const FrameStats& s) {
                 s.energy.gravitational, s.energy.elastic, s.proximities, s.untangle_moves, s.visible_faces,
                 s.back_facing_faces, s.out_of_frame_faces, s.view_seconds, s.velocity_clamps);
   stats_ << line << std::flush;
+  if (!stats_) throw InputError(dir_ + "/stats.csv", "", "cannot write");
   tally(s.faces, s.seconds);
 }
 

@@ -22,8 +22,6 @@ bool good_material_face(const Mesh& mesh, VertId a, VertId b, VertId c) {
   return 0.5 * signed_area2(ua, ub, uc) > kMinRelativeArea * l2;
 }
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 Vec3 world_normal_of(const Mesh& mesh, VertId a, VertId b, VertId c) {
   return area_normal(mesh.x(mesh.vert_node(a)), mesh.x(mesh.vert_node(b)), mesh.x(mesh.vert_node(c)));
 }

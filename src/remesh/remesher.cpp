@@ -17,8 +17,6 @@ double size2(const Mesh& mesh, VertId a, VertId b) {
   return d.dot(0.5 * (m[a] + m[b]) * d);
 }
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 // Flips every edge that fails the Delaunay test, sweeping until none does (or the pass bound).
 int flip_all(Mesh& mesh, const RemeshOptions& o) {
   int flips = 0;

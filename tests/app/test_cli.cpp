@@ -183,6 +183,30 @@ TEST_F(CliTest, RunWritesMeshesEveryNthFrameOnly) {
   EXPECT_TRUE(fs::is_empty(dir_ / "out" / "frames"));
 }
 
+// An earlier run's frame that cannot be cleared away is refused before anything runs (status 2);
+// results that stop being writable part-way (a full disk: /dev/full under stats.csv) stop the
+// run with status 3 and a summary saying why and how far it got.
+TEST_F(CliTest, ResultsThatCannotBeWrittenStopTheRunSayingWhy) {
+  const fs::path frames = dir_ / "out" / "frames";
+  fs::create_directories(frames / "cloth_s.0002.obj" / "inside");
+  EXPECT_EQ(run({"run", scene(), "--out", out_dir(), "--frames", "3", "--threads", "1"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("cloth_s.0002.obj: cannot remove this frame of an earlier run"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "summary.json"));
+
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "this system has no /dev/full";
+  fs::remove_all(dir_ / "out");
+  fs::create_directories(dir_ / "out");
+  fs::create_symlink("/dev/full", dir_ / "out" / "stats.csv");
+  EXPECT_EQ(run({"run", scene(), "--out", out_dir(), "--frames", "3", "--threads", "1", "--mesh-every", "1"}), kExitSimulationFailed);
+  EXPECT_NE(err_.str().find("writing the results failed: "), std::string::npos) << err_.str();
+  EXPECT_NE(err_.str().find("stats.csv: cannot write"), std::string::npos) << err_.str();
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(dir_ / "out" / "summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_EQ(summary["frames"], 0);
+  EXPECT_NE(summary["error"].get<std::string>().find("stats.csv: cannot write"), std::string::npos) << summary.dump();
+  EXPECT_FALSE(fs::exists(frames / "cloth_s.0002.obj"));  // stopped at the first frame
+}
+
 TEST_F(CliTest, RenderDrawsEachFrameAndARunComparedWithItselfMatchesExactly) {
   const std::string camera =
       R"("camera": {"fov": 40, "width": 160, "height": 120, "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}]}, )";
