@@ -60,9 +60,12 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
   for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames", ec)) {
     const std::string name = entry.path().filename().string();
-    if ((entry.path().extension() == ".obj" || entry.path().extension() == ".ply") &&
-        (name.rfind("cloth_", 0) == 0 || name.rfind("obstacle_", 0) == 0) && (fs::remove(entry.path(), ec), ec))
-      throw InputError(entry.path().string(), "", "cannot remove this frame of an earlier run: " + ec.message());
+    const bool earlier_frame = (entry.path().extension() == ".obj" || entry.path().extension() == ".ply") &&
+                               (name.rfind("cloth_", 0) == 0 || name.rfind("obstacle_", 0) == 0);
+    if (!earlier_frame) continue;
+    std::error_code removing;
+    fs::remove(entry.path(), removing);
+    if (removing) throw InputError(entry.path().string(), "", "cannot remove this frame of an earlier run: " + removing.message());
   }
   if (ec) throw InputError(dir + "/frames", "", "cannot list: " + ec.message());
   fs::remove(fs::path(dir) / "summary.json", ec);
