@@ -1,7 +1,8 @@
 // Proximity pairs at the start of a step (Bridson, Fedkiw and Anderson 2002, section 7.2): the
 // cloth and obstacle primitives closer than the repulsion thickness, with the normal that
-// separates them. Obstacles have an outside (their faces' normals), so a cloth point that has
-// sunk into an obstacle is pushed back out, not further in.
+// separates them. A cloth vertex pairs with a cloth face only when it is over the face. Obstacles
+// have an outside (their faces' normals), so a cloth point that has sunk into an obstacle is
+// pushed back out, not further in.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -120,6 +121,11 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
       const double dist = sep.norm();
       if (dist >= band) return;
       const Vec3 face_normal = unit_or_zero((b - a).cross(c - a));
+      // Only a vertex over the face, its border included (Bridson et al. 2002, section 7.2): a
+      // closest point that the border clamps lies in a flat sheet's own plane whenever the band
+      // reaches past the vertex's 2-ring, and pushing it would compress the sheet. Edge-edge
+      // pairs cover the rest.
+      if ((sep - sep.dot(face_normal) * face_normal).norm() > 1e-6 * band) return;
       const Vec3 n = dist > 1e-9 * band ? Vec3(sep / dist) : face_normal;
       if (n.squaredNorm() == 0) return;
       auto& slot = slots[n.dot(face_normal) >= 0 ? 0 : 1];

@@ -1,6 +1,6 @@
 // Proximity pairs on hand-built configurations: the right pair, weights, normal and distance,
 // one pair per vertex and side even over a shared edge, obstacles pushing outward, nothing
-// beyond the band.
+// beyond the band, and no pair inside a flat sheet.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -110,6 +110,63 @@ TEST(Proximity, CrossingEdgesGiveAnEdgePairAndObstaclesPushOutward) {
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_NEAR(pairs[0].distance, -0.001, 1e-12);
   EXPECT_NEAR(pairs[0].normal.y(), 1.0, 1e-12);
+}
+
+TEST(Proximity, AFlatSheetDoesNotRepelItselfEvenWhenTheBandReachesPastItsNeighbours) {
+  // A 10 cm sheet of 1 cm cells at y = 0, its nodes jittered in the plane so the triangles are
+  // irregular, and a band of 1.5 cm, past every node's 2-ring: nearest points of non-incident
+  // faces are all on their borders and in the plane, and none of them may become a pair.
+  const MeshSource grid = make_grid(0.1, 0.1, 10, 10);
+  Scenario s;
+  s.faces = position_triangles(grid);
+  const auto n = static_cast<int64_t>(grid.positions.size());
+  s.x.resize(3 * n);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.002, 0.002);
+  for (int64_t i = 0; i < n; ++i) {
+    const Vec3& p = grid.positions[static_cast<std::size_t>(i)];
+    s.x.segment<3>(3 * i) = Vec3(p.x() + jitter(rng), 0, p.z() + jitter(rng));
+  }
+  s.v = Eigen::VectorXd::Zero(s.x.size());
+  const double band = 0.015;
+  int in_plane_neighbours = 0;  // what a closest-point test alone would have paired
+  for (int64_t i = 0; i < n; ++i)
+    for (const auto& t : s.faces) {
+      if (t[0] == i || t[1] == i || t[2] == i) continue;
+      const Vec3 p = s.x.segment<3>(3 * i);
+      if (point_triangle_distance(p, s.x.segment<3>(3 * t[0]), s.x.segment<3>(3 * t[1]), s.x.segment<3>(3 * t[2])) < band) {
+        ++in_plane_neighbours;
+        break;
+      }
+    }
+  EXPECT_EQ(in_plane_neighbours, n);
+  EXPECT_TRUE(s.find(band).empty());
+
+  // Folded over itself 5 mm higher, shifted half a cell so its nodes are inside faces below,
+  // the sheet repels its copy: every node of the copy over the sheet pairs with a face below.
+  const int32_t base = static_cast<int32_t>(n);
+  for (const auto& t : position_triangles(grid)) s.faces.push_back({t[0] + base, t[2] + base, t[1] + base});
+  s.x.conservativeResize(6 * n);
+  for (int64_t i = 0; i < n; ++i) {
+    const Vec3& p = grid.positions[static_cast<std::size_t>(i)];
+    s.x.segment<3>(3 * (n + i)) = Vec3(p.x() + 0.005, 0.005, p.z() - 0.005);
+  }
+  s.v = Eigen::VectorXd::Zero(s.x.size());
+  int over_the_sheet = 0, paired = 0;
+  const auto pairs = s.find(band);
+  for (int64_t i = n; i < 2 * n; ++i) {
+    const Vec3 p = s.x.segment<3>(3 * i);
+    if (p.x() > 0.001 && p.x() < 0.099 && p.z() < -0.001 && p.z() > -0.099) ++over_the_sheet;
+    for (const auto& pr : pairs)
+      if (pr.nodes[0] == i && pr.weights[0] == 1.0 && pr.nodes[1] < base) {
+        EXPECT_NEAR(pr.distance, 0.005, 1e-12);
+        EXPECT_NEAR(pr.normal.y(), 1.0, 1e-12);
+        ++paired;
+        break;
+      }
+  }
+  EXPECT_EQ(over_the_sheet, 100);
+  EXPECT_EQ(paired, over_the_sheet);
 }
 
 }  // namespace
