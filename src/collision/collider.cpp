@@ -342,7 +342,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
         }
         cz.push_back(c);
       }
-      project_impact_zone(xz, mz, cz, params.thickness, 1e-3 * params.thickness);
+      project_impact_zone(xz, mz, cz, params.impact_separation, 1e-3 * params.thickness);
       for (const auto& [global, li] : local) {
         const Vec3& moved_to = xz[static_cast<std::size_t>(li)];
         if (moved_to != cloth_end(global)) moved[static_cast<std::size_t>(global)] = 1;

@@ -401,8 +401,11 @@ Scene load_scene(const std::string& path) {
     s.fixed_size = r->positive_or("fixed_size", 0.0);
   }
   if (auto c = j.find("collision")) {
-    c->only_keys({"thickness", "max_iterations", "repulsion_thickness", "repulsion_stiffness", "friction"});
+    c->only_keys({"thickness", "impact_separation", "max_iterations", "repulsion_thickness", "repulsion_stiffness", "friction"});
     s.collision.thickness = c->positive_or("thickness", s.collision.thickness);
+    s.collision.impact_separation = c->positive_or("impact_separation", 0.1 * s.collision.thickness);
+    if (s.collision.impact_separation > s.collision.thickness)
+      c->at("impact_separation").fail("must be at most the thickness");
     s.collision.repulsion_thickness = c->positive_or("repulsion_thickness", 2 * s.collision.thickness);
     if (s.collision.repulsion_thickness < s.collision.thickness)
       c->at("repulsion_thickness").fail("must be at least the thickness");

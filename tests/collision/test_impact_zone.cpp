@@ -1,9 +1,11 @@
 // Impact-zone projection: constraints satisfied, linear momentum of the zone conserved exactly,
-// obstacle points unmoved, and an already separated zone left alone.
+// obstacle points unmoved, and an already separated zone left alone; the collider projects an
+// impact to the impact separation.
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "collision/collider.hpp"
 #include "collision/impact_zone.hpp"
 
 namespace vdc {
@@ -73,6 +75,34 @@ TEST(ImpactZone, ObstaclePointsStayAndSeparatedZonesAreUntouched) {
   const auto before = apart;
   project_impact_zone(apart, m, {c}, 0.001, 1e-12);
   EXPECT_EQ(apart, before);
+}
+
+}  // namespace
+}  // namespace vdc
+
+namespace vdc {
+namespace {
+
+TEST(Collider, AVertexThatCrossesAnObstacleEndsTheStepAtTheImpactSeparationOnItsSide) {
+  // A cloth triangle whose corner 0 drops from 1 mm above an obstacle floor (y = 0) to 10 mm
+  // below it in one step; its other corners stay 0.5 m up. The projection moves only corner 0,
+  // straight up, to the impact separation (not the whole thickness).
+  Collider collider({{0, 1, 2}}, {CollisionMesh{{{0, 2, 1}, {0, 3, 2}}}}, 3);
+  Eigen::VectorXd x0(9), x1(9);
+  x0 << 0.3, 0.001, -0.2, 0.3, 0.5, 0.2, 0.5, 0.5, -0.2;
+  x1 = x0;
+  x1(1) = -0.01;
+  const std::vector<Vec3> floor{Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(1, 0, 1), Vec3(-1, 0, 1)};
+  CollisionParams params;
+  params.thickness = 0.003;
+  params.impact_separation = 0.0003;
+  const CollisionStats stats = collider.resolve(x0, x1, {0.01, 0.01, 0.01}, {0, 0, 0}, {floor}, {floor}, params);
+  EXPECT_EQ(stats.fallbacks, 0);
+  EXPECT_GE(stats.impacts, 1);
+  EXPECT_NEAR(x1(1), 0.0003, 1e-3 * params.thickness);
+  EXPECT_NEAR(x1(0), 0.3, 1e-15);
+  EXPECT_NEAR(x1(2), -0.2, 1e-15);
+  EXPECT_EQ(x1.tail<6>(), x0.tail<6>());
 }
 
 }  // namespace
