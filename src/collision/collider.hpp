@@ -23,6 +23,7 @@ struct CollisionParams {
   double repulsion_stiffness = 1.0;    // k h^2 / m of a pair: the share of a gap a step closes is k h^2 / (m + k h^2)
   double friction = 0.3;               // Coulomb coefficient of proximity pairs
   int max_iterations = 20;   // detection-projection rounds before the fallback
+  int untangle_iterations = 100;  // passes of untangling (collision/untangle.hpp) after a remesh
   int threads = 1;           // for the detection tests (set by the simulation, not the scene)
 };
 

@@ -401,7 +401,8 @@ Scene load_scene(const std::string& path) {
     s.fixed_size = r->positive_or("fixed_size", 0.0);
   }
   if (auto c = j.find("collision")) {
-    c->only_keys({"thickness", "impact_separation", "max_iterations", "repulsion_thickness", "repulsion_stiffness", "friction"});
+    c->only_keys({"thickness", "impact_separation", "max_iterations", "untangle_iterations", "repulsion_thickness", "repulsion_stiffness",
+                   "friction"});
     s.collision.thickness = c->positive_or("thickness", s.collision.thickness);
     s.collision.impact_separation = c->positive_or("impact_separation", 0.1 * s.collision.thickness);
     if (s.collision.impact_separation > s.collision.thickness)
@@ -414,6 +415,9 @@ Scene load_scene(const std::string& path) {
     long long it = c->integer_or("max_iterations", s.collision.max_iterations);
     if (it < 1 || it > 1000) c->at("max_iterations").fail("must be between 1 and 1000");
     s.collision.max_iterations = static_cast<int>(it);
+    long long untangle = c->integer_or("untangle_iterations", s.collision.untangle_iterations);
+    if (untangle < 0 || untangle > 10000) c->at("untangle_iterations").fail("must be between 0 and 10000");
+    s.collision.untangle_iterations = static_cast<int>(untangle);
   }
   std::set<std::string> names;
   for (const JsonValue& g : j.at("garments").items()) {

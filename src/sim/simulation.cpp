@@ -114,6 +114,10 @@ std::vector<std::vector<Vec3>> Simulation::obstacle_positions(double t) {
 
 void Simulation::remesh_garments(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
+  // The meshes the frame starts with, free of crossings when the last step ended without any: the
+  // fallback for a remesh whose crossings untangling cannot remove.
+  std::vector<Mesh> started_with;
+  for (const auto& g : scene_.garments) started_with.push_back(g.mesh);
   const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
   // For the proximity criterion the other garments are obstacles too: a layer's chords must not
   // sag through the layer beside it any more than through the body.
@@ -155,12 +159,42 @@ void Simulation::remesh_garments(FrameStats& stats) {
     stats.collapses += r.collapses;
   }
   // An unchanged mesh keeps its system (elements, pattern, symbolic factorization) and collider.
-  if (stats.splits + stats.flips + stats.collapses > 0) rebuild();
+  const bool changed = stats.splits + stats.flips + stats.collapses > 0;
+  if (changed) rebuild();
   stats.remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  untangle_cloth(stats);
+  const UntangleReport remeshed = untangle_cloth(stats);
+  if (remeshed.remaining > 0 && changed) keep_fewer_crossings(std::move(started_with), remeshed.remaining, stats);
 }
 
-void Simulation::untangle_cloth(FrameStats& stats) {
+// Coarsening can fold cloth through cloth in ways contour minimisation (Volino and Magnenat-
+// Thalmann 2006) does not undo; the frame then goes on with whichever of its start mesh and the
+// remeshed one has fewer crossings left after untangling.
+void Simulation::keep_fewer_crossings(std::vector<Mesh> started_with, int remeshed_pairs, FrameStats& stats) {
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<Mesh> remeshed;
+  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
+    remeshed.push_back(std::move(scene_.garments[g].mesh));
+    scene_.garments[g].mesh = std::move(started_with[g]);
+  }
+  rebuild();
+  FrameStats scratch;
+  const int start_pairs = untangle_cloth(scratch).remaining;
+  std::ostringstream msg;
+  msg << "frame " << frame_ << ": remeshing left " << remeshed_pairs << " crossing pair(s) that untangling could not remove; ";
+  if (start_pairs < remeshed_pairs) {
+    stats.untangle_moves += scratch.untangle_moves;
+    stats.remesh_undone = 1;
+    msg << "the frame keeps the mesh it started with (" << start_pairs << " crossing pair(s))";
+  } else {
+    for (std::size_t g = 0; g < scene_.garments.size(); ++g) scene_.garments[g].mesh = std::move(remeshed[g]);
+    rebuild();
+    msg << "the mesh it started with has as many (" << start_pairs << "), so the remeshed one is kept";
+  }
+  if (log_) log_(msg.str());
+  stats.remesh_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+UntangleReport Simulation::untangle_cloth(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
   for (const auto& c : constraints(time(), scene_.frame_time)) fixed[static_cast<std::size_t>(c.node)] = 1;
@@ -168,6 +202,7 @@ void Simulation::untangle_cloth(FrameStats& stats) {
   UntangleParams params;
   params.thickness = scene_.collision.thickness;
   params.step = scene_.collision.thickness;
+  params.max_iterations = scene_.collision.untangle_iterations;
   const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacle_meshes_, obstacle_x, params);
   stats.untangle_moves += r.moves;
   // Routine untangling (cloth-obstacle pairs cleared in one pass: nodes a split put on a chord
@@ -183,6 +218,7 @@ void Simulation::untangle_cloth(FrameStats& stats) {
   }
   if (r.moves > 0) scatter_state();
   stats.collision_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
 }
 
 void Simulation::rebuild() {

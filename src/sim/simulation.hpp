@@ -9,6 +9,7 @@
 
 #include "physics/cloth_model.hpp"
 #include "collision/collider.hpp"
+#include "collision/untangle.hpp"
 #include "physics/integrator.hpp"
 #include "scene/scene.hpp"
 
@@ -45,6 +46,8 @@ struct FrameStats {
   int splits = 0, flips = 0, collapses = 0;
   int proximities = 0;  // most proximity pairs in one step of the frame
   int untangle_moves = 0;  // vertex moves of untangling (after remeshing)
+  int remesh_undone = 0;   // 1: remeshing made crossings untangling could not remove, so the
+                           // frame kept the mesh it started with
   // View mode: faces at the frame's start by how the camera sees them, and the time taken by
   // the view factors (part of remesh_seconds).
   int visible_faces = 0, back_facing_faces = 0, out_of_frame_faces = 0;
@@ -92,7 +95,10 @@ class Simulation {
   void rebuild();                       // elements, assembler and solver from the meshes
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
   // Removes interpenetrations that exist at the current time (start-up, after remeshing).
-  void untangle_cloth(FrameStats& stats);
+  UntangleReport untangle_cloth(FrameStats& stats);
+  // After a remesh whose crossings untangling could not all remove (remeshed_pairs left): goes on
+  // with whichever of the frame's start meshes and the remeshed ones has fewer.
+  void keep_fewer_crossings(std::vector<Mesh> started_with, int remeshed_pairs, FrameStats& stats);
   void check_options_and_collect_obstacles();  // both constructors' first step
   void place_obstacles();               // moving obstacles' meshes at time()
   // Every obstacle's vertex positions at time t. The last two times asked for are remembered:
