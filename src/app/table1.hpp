@@ -21,6 +21,11 @@ struct RunTable {
 // Reads DIR/stats.csv (the columns frame, faces, vertices, seconds first). Throws InputError.
 RunTable read_run_table(const std::string& stats_csv);
 
+// Speed-up of `run` over `base`: base's mean seconds per frame over run's, both over the frames
+// both have (the first min(frames) of each), which is how a baseline run made over the shot's
+// first frames only compares. 0 when either has no frame; *shared gets the frame count.
+double speedup_over_shared_frames(const RunTable& base, const RunTable& run, int* shared = nullptr);
+
 // args: the options after `bench table1`. Returns the exit status: 0 when every run finished,
 // 3 when one failed (the table says which), 2 on bad usage or scenes.
 int table1_command(const std::vector<std::string>& args, std::ostream& out, std::ostream& err);

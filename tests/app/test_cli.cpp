@@ -493,6 +493,13 @@ TEST_F(CliTest, Table1ReadsARunsStatistics) {
   EXPECT_DOUBLE_EQ(t.seconds_min, 0.5);
   EXPECT_DOUBLE_EQ(t.seconds_max, 1.5);
   EXPECT_DOUBLE_EQ(t.seconds_mean, 1.0);
+  // A baseline of 3 frames against a run of 2: over the first 2, (0.5 + 1.5) / (0.25 + 0.25).
+  const RunTable two = read_run_table(write("two.csv", "frame,faces,vertices,seconds\n1,50,30,0.25\n2,60,35,0.25\n"));
+  int shared = 0;
+  EXPECT_DOUBLE_EQ(speedup_over_shared_frames(t, two, &shared), 4.0);
+  EXPECT_EQ(shared, 2);
+  EXPECT_DOUBLE_EQ(speedup_over_shared_frames(two, t), 0.25);
+  EXPECT_DOUBLE_EQ(speedup_over_shared_frames(RunTable{}, t), 0.0);
   EXPECT_THROW(read_run_table(write("bad.csv", "frame,faces,vertices,seconds\n1,x,3,0.5\n")), InputError);
   EXPECT_THROW(read_run_table(write("other.csv", "a,b\n")), InputError);
 }
@@ -539,7 +546,8 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
     std::istringstream row(line);
     std::vector<std::string> cells;
     for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), 20u) << line;
+    ASSERT_EQ(cells.size(), 21u) << line;
+    EXPECT_EQ(cells[20], "2") << "every run compared with its fixed run over both frames: " << line;
     EXPECT_EQ(cells[18], "3") << "frames 0, 1 and 2 checked: " << line;
     EXPECT_EQ(cells[19], "0") << "no crossings: " << line;
     EXPECT_GT(std::stod(cells[16]), 0) << "CPU seconds a frame: " << line;
