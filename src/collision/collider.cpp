@@ -38,6 +38,27 @@ void edges_of(const std::vector<std::array<int32_t, 3>>& faces, std::vector<std:
   }
 }
 
+// The faces around each of `num_items` items, given each face's three items (its corners or its
+// edges).
+FacesAround faces_around(const std::vector<std::array<int32_t, 3>>& face_items, std::size_t num_items) {
+  FacesAround a;
+  a.start.assign(num_items + 1, 0);
+  for (const auto& f : face_items)
+    for (int32_t k : f) ++a.start[static_cast<std::size_t>(k) + 1];
+  std::partial_sum(a.start.begin(), a.start.end(), a.start.begin());
+  a.faces.resize(3 * face_items.size());
+  std::vector<int32_t> next(a.start.begin(), a.start.end() - 1);
+  for (std::size_t f = 0; f < face_items.size(); ++f)
+    for (int32_t k : face_items[f]) a.faces[static_cast<std::size_t>(next[static_cast<std::size_t>(k)]++)] = static_cast<int32_t>(f);
+  return a;
+}
+
+ObstacleAdjacency adjacency_of(const CollisionMesh& mesh, const std::vector<std::array<int32_t, 3>>& face_edges, std::size_t num_edges) {
+  int32_t num_vertices = 0;
+  for (const auto& f : mesh.faces) num_vertices = std::max({num_vertices, f[0] + 1, f[1] + 1, f[2] + 1});
+  return {faces_around(mesh.faces, static_cast<std::size_t>(num_vertices)), faces_around(face_edges, num_edges)};
+}
+
 // A point of the scene: a cloth node (obstacle < 0) or an obstacle vertex.
 struct PointRef {
   int32_t obstacle;
@@ -55,7 +76,10 @@ Collider::Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::
     : obstacles_(std::move(obstacles)) {
   obstacle_edges_.resize(obstacles_.size());
   obstacle_face_edges_.resize(obstacles_.size());
-  for (std::size_t o = 0; o < obstacles_.size(); ++o) edges_of(obstacles_[o].faces, obstacle_edges_[o], obstacle_face_edges_[o]);
+  for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+    edges_of(obstacles_[o].faces, obstacle_edges_[o], obstacle_face_edges_[o]);
+    obstacle_adjacency_.push_back(adjacency_of(obstacles_[o], obstacle_face_edges_[o], obstacle_edges_[o].size()));
+  }
   obstacle_face_tree_.resize(obstacles_.size());
   obstacle_edge_tree_.resize(obstacles_.size());
   set_cloth(cloth_faces, num_nodes);
@@ -107,9 +131,14 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
     const auto oi = static_cast<int32_t>(o);
-    std::vector<Aabb> faces, edges;
-    for (const auto& f : obstacles_[o].faces) faces.push_back(path_box({{oi, f[0]}, {oi, f[1]}, {oi, f[2]}}));
-    for (const auto& e : obstacle_edges_[o]) edges.push_back(path_box({{oi, e[0]}, {oi, e[1]}}));
+    const std::vector<Aabb> faces = leaf_boxes(obstacles_[o].faces.size(), params.threads, [&](std::size_t i) {
+      const auto& f = obstacles_[o].faces[i];
+      return path_box({{oi, f[0]}, {oi, f[1]}, {oi, f[2]}});
+    });
+    const std::vector<Aabb> edges = leaf_boxes(obstacle_edges_[o].size(), params.threads, [&](std::size_t i) {
+      const auto& e = obstacle_edges_[o][i];
+      return path_box({{oi, e[0]}, {oi, e[1]}});
+    });
     obstacle_face_bvh.push_back(&obstacle_face_tree_[o].update(faces));
     obstacle_edge_bvh.push_back(&obstacle_edge_tree_[o].update(edges));
   }
@@ -128,11 +157,14 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
 
   for (int round = 0; round < params.max_iterations && !clear; ++round) {
     ++stats.iterations;
-    std::vector<Aabb> face_boxes, edge_boxes;
-    face_boxes.reserve(cloth_faces_.size());
-    edge_boxes.reserve(cloth_edges_.size());
-    for (const auto& f : cloth_faces_) face_boxes.push_back(path_box({{-1, f[0]}, {-1, f[1]}, {-1, f[2]}}));
-    for (const auto& e : cloth_edges_) edge_boxes.push_back(path_box({{-1, e[0]}, {-1, e[1]}}));
+    const std::vector<Aabb> face_boxes = leaf_boxes(cloth_faces_.size(), params.threads, [&](std::size_t i) {
+      const auto& f = cloth_faces_[i];
+      return path_box({{-1, f[0]}, {-1, f[1]}, {-1, f[2]}});
+    });
+    const std::vector<Aabb> edge_boxes = leaf_boxes(cloth_edges_.size(), params.threads, [&](std::size_t i) {
+      const auto& e = cloth_edges_[i];
+      return path_box({{-1, e[0]}, {-1, e[1]}});
+    });
     face_bvh = &cloth_face_tree_.update(face_boxes);
     edge_bvh = &cloth_edge_tree_.update(edge_boxes);
 

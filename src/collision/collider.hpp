@@ -39,6 +39,16 @@ struct CollisionMesh {
   std::vector<std::array<int32_t, 3>> faces;
 };
 
+// The faces around each vertex and each edge of an obstacle, for its outward normals at the few
+// primitives a query finds (proximity.cpp), not at all of them every step. Item k's faces are
+// faces[start[k], start[k + 1]).
+struct FacesAround {
+  std::vector<int32_t> start, faces;
+};
+struct ObstacleAdjacency {
+  FacesAround vertex, edge;
+};
+
 class Collider {
  public:
   // Cloth faces (global node ids) and obstacle meshes (faces into their own vertex arrays).
@@ -69,6 +79,7 @@ class Collider {
   std::vector<CollisionMesh> obstacles_;
   std::vector<std::vector<std::array<int32_t, 2>>> obstacle_edges_;
   std::vector<std::vector<std::array<int32_t, 3>>> obstacle_face_edges_;
+  std::vector<ObstacleAdjacency> obstacle_adjacency_;
   int32_t num_nodes_;
   // Hierarchies kept from step to step, refit to the boxes of each query.
   RefitBvh cloth_face_tree_, cloth_edge_tree_;

@@ -19,30 +19,20 @@ Vec3 unit_or_zero(const Vec3& a) {
   return n > 0 ? Vec3(a / n) : Vec3::Zero();
 }
 
-// Outward normals of an obstacle at its current positions: per face, per vertex and per edge
-// (area-weighted averages of the adjacent faces).
-struct ObstacleNormals {
-  std::vector<Vec3> face, vertex, edge;
-};
-
-ObstacleNormals obstacle_normals(const CollisionMesh& mesh, const std::vector<std::array<int32_t, 2>>& edges,
-                                 const std::vector<std::array<int32_t, 3>>& face_edges, const std::vector<Vec3>& x) {
-  ObstacleNormals n;
-  n.face.resize(mesh.faces.size());
-  n.vertex.assign(x.size(), Vec3::Zero());
-  n.edge.assign(edges.size(), Vec3::Zero());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const auto& t = mesh.faces[f];
-    const Vec3 an = area_normal(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]);
-    n.face[f] = unit_or_zero(an);
-    for (int i = 0; i < 3; ++i) {
-      n.vertex[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] += an;
-      n.edge[static_cast<std::size_t>(face_edges[f][static_cast<std::size_t>(i)])] += an;
-    }
+// An obstacle's outward unit normal (zero if degenerate) at its current positions x: of a face,
+// or the area-weighted average over the faces around a vertex or an edge.
+Vec3 face_outward(const CollisionMesh& mesh, const std::vector<Vec3>& x, int32_t f) {
+  const auto& t = mesh.faces[static_cast<std::size_t>(f)];
+  return unit_or_zero(area_normal(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]));
+}
+Vec3 outward_around(const CollisionMesh& mesh, const FacesAround& around, const std::vector<Vec3>& x, int64_t item) {
+  if (item + 1 >= static_cast<int64_t>(around.start.size())) return Vec3::Zero();  // a vertex no face uses
+  Vec3 sum = Vec3::Zero();
+  for (int32_t k = around.start[static_cast<std::size_t>(item)]; k < around.start[static_cast<std::size_t>(item) + 1]; ++k) {
+    const auto& t = mesh.faces[static_cast<std::size_t>(around.faces[static_cast<std::size_t>(k)])];
+    sum += area_normal(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]);
   }
-  for (auto& v : n.vertex) v = unit_or_zero(v);
-  for (auto& e : n.edge) e = unit_or_zero(e);
-  return n;
+  return unit_or_zero(sum);
 }
 
 // The separating direction of a cloth point from an obstacle point whose outward normal is
@@ -64,23 +54,28 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     for (const Vec3& p : pts) b.grow(p);
     return b;
   };
-  std::vector<Aabb> face_boxes, edge_boxes;
-  for (const auto& f : cloth_faces_) face_boxes.push_back(box_of({cx(f[0]), cx(f[1]), cx(f[2])}));
-  for (const auto& e : cloth_edges_) edge_boxes.push_back(box_of({cx(e[0]), cx(e[1])}));
+  const std::vector<Aabb> face_boxes = leaf_boxes(cloth_faces_.size(), threads, [&](std::size_t i) {
+    const auto& f = cloth_faces_[i];
+    return box_of({cx(f[0]), cx(f[1]), cx(f[2])});
+  });
+  const std::vector<Aabb> edge_boxes = leaf_boxes(cloth_edges_.size(), threads, [&](std::size_t i) { return box_of({cx(cloth_edges_[i][0]), cx(cloth_edges_[i][1])}); });
   const Bvh& face_bvh = cloth_face_tree_.update(face_boxes);
   const Bvh& edge_bvh = cloth_edge_tree_.update(edge_boxes);
   const std::size_t num_obstacles = obstacles_.size();
   std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
-  std::vector<ObstacleNormals> normals;
   for (std::size_t o = 0; o < num_obstacles; ++o) {
     const auto& ox = obstacle_x[o];
-    std::vector<Aabb> faces, edges;
-    for (const auto& f : obstacles_[o].faces)
-      faces.push_back(box_of({ox[static_cast<std::size_t>(f[0])], ox[static_cast<std::size_t>(f[1])], ox[static_cast<std::size_t>(f[2])]}));
-    for (const auto& e : obstacle_edges_[o]) edges.push_back(box_of({ox[static_cast<std::size_t>(e[0])], ox[static_cast<std::size_t>(e[1])]}));
+    auto at = [&](int32_t i) -> const Vec3& { return ox[static_cast<std::size_t>(i)]; };
+    const std::vector<Aabb> faces = leaf_boxes(obstacles_[o].faces.size(), threads, [&](std::size_t i) {
+      const auto& f = obstacles_[o].faces[i];
+      return box_of({at(f[0]), at(f[1]), at(f[2])});
+    });
+    const std::vector<Aabb> edges = leaf_boxes(obstacle_edges_[o].size(), threads, [&](std::size_t i) {
+      const auto& e = obstacle_edges_[o][i];
+      return box_of({at(e[0]), at(e[1])});
+    });
     obstacle_face_bvh.push_back(&obstacle_face_tree_[o].update(faces));
     obstacle_edge_bvh.push_back(&obstacle_edge_tree_[o].update(edges));
-    normals.push_back(obstacle_normals(obstacles_[o], obstacle_edges_[o], obstacle_face_edges_[o], ox));
   }
 
   // Fills slot j of a pair with cloth node i (a handle becomes a moving fixed point).
@@ -147,7 +142,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
         const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
         const double dist = sep.norm();
         if (dist >= best) return;
-        const Vec3 outward = normals[o].face[static_cast<std::size_t>(f)];
+        const Vec3 outward = face_outward(obstacles_[o], ox, f);
         if (outward.squaredNorm() == 0) return;
         best = dist;
         ProximityPair pair;
@@ -169,8 +164,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
     for (int64_t i = 0; i < nv; ++i) {
       const Vec3& p = ox[static_cast<std::size_t>(i)];
-      const Vec3& outward = normals[o].vertex[static_cast<std::size_t>(i)];
-      if (outward.squaredNorm() == 0) continue;
+      std::optional<Vec3> outward;  // computed once the vertex has a cloth face within the band
       Aabb box = box_of({p});
       box.pad(band);
       double best = band;
@@ -181,11 +175,13 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
         const Vec3 sep = (w[0] * a + w[1] * b + w[2] * c) - p;
         const double dist = sep.norm();
         if (dist >= best) return;
+        if (!outward) outward = outward_around(obstacles_[o], obstacle_adjacency_[o].vertex, ox, i);
+        if (outward->squaredNorm() == 0) return;
         best = dist;
         ProximityPair pair;
         for (int k = 0; k < 3; ++k) set_cloth(pair, k, t[static_cast<std::size_t>(k)], w[k]);
         set_obstacle(pair, 3, o, static_cast<int32_t>(i), -1.0);
-        pair.normal = obstacle_direction(sep, outward, band);
+        pair.normal = obstacle_direction(sep, *outward, band);
         pair.distance = pair.normal.dot(sep);
         obstacle_vertex_pairs[o][static_cast<std::size_t>(i)] = pair;
       });
@@ -230,8 +226,9 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
         const Vec2 su = closest_segment_params(a0, a1, b0, b1);
         if (!interior(su.x()) || !interior(su.y())) return;
         const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
-        const Vec3& outward = normals[o].edge[static_cast<std::size_t>(eb)];
-        if (sep.norm() >= band || outward.squaredNorm() == 0) return;
+        if (sep.norm() >= band) return;
+        const Vec3 outward = outward_around(obstacles_[o], obstacle_adjacency_[o].edge, ox, eb);
+        if (outward.squaredNorm() == 0) return;
         ProximityPair pair;
         set_cloth(pair, 0, A[0], 1 - su.x());
         set_cloth(pair, 1, A[1], su.x());

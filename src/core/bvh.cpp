@@ -20,6 +20,7 @@ Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
   build(prims, 0, prims.size(), centres);
   rank_.resize(prims.size());
   for (std::size_t i = 0; i < prims.size(); ++i) rank_[static_cast<std::size_t>(prims[i])] = static_cast<int32_t>(i);
+  measure_looseness();
 }
 
 int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres) {
@@ -53,6 +54,7 @@ int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t e
 void Bvh::refit(const std::vector<Aabb>& leaf_boxes) {
   leaf_box_ = leaf_boxes;
   if (!leaf_box_.empty()) refit_node(0);
+  measure_looseness();
 }
 
 void Bvh::refit_node(int32_t i) {
@@ -65,6 +67,20 @@ void Bvh::refit_node(int32_t i) {
   refit_node(n.right);
   n.box = nodes_[static_cast<std::size_t>(n.left)].box;
   n.box.grow(nodes_[static_cast<std::size_t>(n.right)].box);
+}
+
+namespace {
+// Half the surface area of a box (the surface area heuristic's measure).
+double half_area(const Aabb& b) {
+  const Vec3 d = (b.hi - b.lo).cwiseMax(0.0);
+  return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
+}
+}  // namespace
+
+void Bvh::measure_looseness() {
+  double inner = 0, leaves = 0;
+  for (const Node& n : nodes_) (n.left < 0 ? leaves : inner) += half_area(n.box);
+  looseness_ = leaves > 0 ? inner / leaves : inner;
 }
 
 void Bvh::self_pairs(const std::function<void(int32_t, int32_t)>& f) const {

@@ -4,6 +4,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -32,6 +33,15 @@ struct Aabb {
   // Distance from p to the box (0 inside).
   double distance(const Vec3& p) const { return (lo - p).cwiseMax(p - hi).cwiseMax(0.0).norm(); }
 };
+
+// One box per primitive, box_of(i) for i in [0, n), computed on `threads` threads.
+template <class BoxOf>
+std::vector<Aabb> leaf_boxes(std::size_t n, int threads, BoxOf&& box_of) {
+  std::vector<Aabb> boxes(n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int64_t i = 0; i < static_cast<int64_t>(n); ++i) boxes[static_cast<std::size_t>(i)] = box_of(static_cast<std::size_t>(i));
+  return boxes;
+}
 
 class Bvh {
  public:
@@ -69,6 +79,10 @@ class Bvh {
 
   int32_t size() const { return static_cast<int32_t>(leaf_box_.size()); }
   const Aabb& root_box() const { return nodes_.front().box; }
+  // How loose the tree is: the surface area of its inner nodes' boxes over that of its leaves'
+  // (the cost a query pays to reach a leaf, after the surface area heuristic). Refits of moving
+  // primitives raise it; a fresh build sets the baseline.
+  double looseness() const { return looseness_; }
 
  private:
   // Depth first with a fixed stack (the median split keeps the depth at most ceil(log2 n) + 1,
@@ -101,31 +115,35 @@ class Bvh {
   };
   int32_t build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
   void refit_node(int32_t n);
+  void measure_looseness();
   void self_node(int32_t a, const std::function<void(int32_t, int32_t)>& f) const;
   void cross(int32_t a, const Bvh& other, int32_t b, const std::function<void(int32_t, int32_t)>& f, bool self) const;
 
   std::vector<Node> nodes_;
   std::vector<Aabb> leaf_box_;
   std::vector<int32_t> rank_;  // by primitive: its place in leaf order (depth first, left first)
+  double looseness_ = 0;
 };
 
 // A hierarchy kept over a sequence of box updates for the same primitives: refit on each update,
-// rebuilt from scratch every `rebuild_every` updates (refits slowly loosen as things move) and
-// whenever the number of primitives changes.
+// rebuilt from scratch when refits have loosened it past `max_loosening` times its looseness when
+// built (a body whose limbs swing apart, say), and whenever the number of primitives changes.
 class RefitBvh {
  public:
-  explicit RefitBvh(int rebuild_every = 16) : rebuild_every_(rebuild_every) {}
+  explicit RefitBvh(double max_loosening = 1.2) : max_loosening_(max_loosening) {}
   const Bvh& update(const std::vector<Aabb>& leaf_boxes) {
-    if (!tree_ || tree_->size() != static_cast<int32_t>(leaf_boxes.size()) || ++updates_ % rebuild_every_ == 0)
-      tree_ = std::make_unique<Bvh>(leaf_boxes);
-    else
+    if (tree_ && tree_->size() == static_cast<int32_t>(leaf_boxes.size())) {
       tree_->refit(leaf_boxes);
+      if (tree_->looseness() <= max_loosening_ * built_looseness_) return *tree_;
+    }
+    tree_ = std::make_unique<Bvh>(leaf_boxes);
+    built_looseness_ = tree_->looseness();
     return *tree_;
   }
 
  private:
-  int rebuild_every_;
-  int updates_ = 0;
+  double max_loosening_;
+  double built_looseness_ = 0;
   std::unique_ptr<Bvh> tree_;
 };
 

@@ -2,6 +2,8 @@
 // with the brute-force answer; refit follows moved boxes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
 #include <random>
 #include <set>
 
@@ -95,6 +97,48 @@ TEST(Bvh, PairsBetweenTreesAndBoxQueriesMatchBruteForce) {
   for (std::size_t i = 0; i < a.size(); ++i)
     if (a[i].overlaps(q)) brute.insert(static_cast<int>(i));
   EXPECT_EQ(hits, brute);
+}
+
+// Looseness is the inner boxes' surface area over the leaves': two unit cubes a unit apart make a
+// root of 3 x 1 x 1 (half area 7) over leaves of half area 3 each.
+TEST(Bvh, LoosenessIsInnerAreaOverLeafArea) {
+  Aabb a, b;
+  a.grow(Vec3(0, 0, 0));
+  a.grow(Vec3(1, 1, 1));
+  b.grow(Vec3(2, 0, 0));
+  b.grow(Vec3(3, 1, 1));
+  EXPECT_DOUBLE_EQ(Bvh({a, b}).looseness(), 7.0 / 6.0);
+}
+
+// A kept hierarchy refits while its boxes drift and is rebuilt once they have scattered (every
+// box moved to another's place), so it is never looser than the bound over a fresh build, and
+// its queries stay exact throughout.
+TEST(Bvh, KeptHierarchyIsRebuiltWhenRefitsLoosenIt) {
+  std::mt19937 rng(3);
+  std::vector<Aabb> boxes = random_boxes(rng, 300, 1.0);
+  const double bound = 1.2;
+  RefitBvh kept(bound);
+  std::vector<int> order(boxes.size());
+  std::iota(order.begin(), order.end(), 0);
+  for (int update = 0; update < 6; ++update) {
+    if (update == 3) {  // scatter: box i takes the place of box order[i]
+      std::shuffle(order.begin(), order.end(), rng);
+      std::vector<Aabb> moved(boxes.size());
+      for (std::size_t i = 0; i < boxes.size(); ++i) moved[i] = boxes[static_cast<std::size_t>(order[i])];
+      boxes = moved;
+    } else {
+      for (auto& b : boxes) {  // drift a little
+        const Vec3 d(0.01 * std::sin(b.lo.y() * 3), 0.01, 0.0);
+        b.lo += d;
+        b.hi += d;
+      }
+    }
+    const Bvh& tree = kept.update(boxes);
+    EXPECT_LE(tree.looseness(), bound * Bvh(boxes).looseness() + 1e-12) << "update " << update;
+    std::set<std::pair<int, int>> found;
+    tree.self_pairs([&](int32_t i, int32_t j) { found.emplace(i, j); });
+    EXPECT_EQ(found, brute_self(boxes)) << "update " << update;
+  }
 }
 
 }  // namespace

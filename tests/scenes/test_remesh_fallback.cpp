@@ -26,13 +26,13 @@ Soup soup(const Mesh& m) {
 TEST(RemeshFallback, CrossingsUntanglingCannotRemoveMakeTheFrameKeepItsStartMesh) {
   Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/sheet-sphere.json");
   scene.collision.untangle_iterations = 0;  // detection only: any crossing left by a remesh stays
-  // Edges of 12 to 30 cm over a sphere of 10 cm radius: a split's new node on a chord over the
+  // Edges of 15 to 30 cm over a sphere of 10 cm radius: a split's new node on a chord over the
   // sphere lies inside it.
-  scene.remeshing.size_min = 0.12;
+  scene.remeshing.size_min = 0.15;
   scene.remeshing.size_max = 0.3;
   Simulation sim(std::move(scene), SimOptions{SimMode::Adaptive, 1});
   int undone = 0, faces_before = sim.num_faces();
-  // 90 frames: the sheet falls onto the sphere, which rises into it from 1.5 s (frame 38).
+  // 250 frames: the sheet falls onto the sphere, which then moves under it from 1.5 s (frame 38).
   for (int f = 0; f < 250; ++f) {
     const FrameStats s = sim.step_frame();
     if (s.remesh_undone) {
