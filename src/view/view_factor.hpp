@@ -16,6 +16,7 @@ struct ViewParams {
   double margin = 0.4;                // m: the fall-off from the frustum to v_out
   double anticipation = 5;            // frames: T, how far ahead the camera is looked at
   double l_min = 4;                   // pixels: shortest visible edge on screen (0: no floor)
+  double l_max = 0;                   // pixels: longest visible edge on screen (0: no ceiling)
   double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling
   int samples_per_frame = 4;          // camera samples per frame over the anticipation window
 };

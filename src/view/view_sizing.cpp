@@ -6,8 +6,8 @@
 
 namespace vdc {
 
-Mat2 screen_space_floor(const Mat2& m, const Mat23& projection_jacobian, const Mat32& deformation, double l_min) {
-  if (!(l_min > 0)) return m;
+Mat2 screen_space_bounds(const Mat2& m, const Mat23& projection_jacobian, const Mat32& deformation, double l_min, double l_max) {
+  if (!(l_min > 0) && !(l_max > 0)) return m;
   const Mat2 s = projection_jacobian * deformation;  // material metres -> pixels
   const double det = s.determinant();
   if (!(std::abs(det) > 1e-12 * s.squaredNorm()) || !std::isfinite(det)) return m;
@@ -15,9 +15,11 @@ Mat2 screen_space_floor(const Mat2& m, const Mat23& projection_jacobian, const M
   const Mat2 screen = s_inv.transpose() * m * s_inv;  // eq. 5
   Eigen::SelfAdjointEigenSolver<Mat2> eig;
   eig.computeDirect(0.5 * (screen + screen.transpose()));  // eq. 6
-  const Vec2 clamped = eig.eigenvalues().cwiseMin(1.0 / (l_min * l_min));  // eq. 7
-  const Mat2 floored = eig.eigenvectors() * clamped.asDiagonal() * eig.eigenvectors().transpose();  // eq. 8
-  return s.transpose() * floored * s;
+  Vec2 clamped = eig.eigenvalues();
+  if (l_min > 0) clamped = clamped.cwiseMin(1.0 / (l_min * l_min));  // eq. 7
+  if (l_max > 0) clamped = clamped.cwiseMax(1.0 / (l_max * l_max));  // eq. 7's counterpart: no edge longer than l_max
+  const Mat2 bounded = eig.eigenvectors() * clamped.asDiagonal() * eig.eigenvectors().transpose();
+  return s.transpose() * bounded * s;  // eq. 8
 }
 
 ViewSizing::ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads)
@@ -54,7 +56,7 @@ void ViewSizing::modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing)
   for (FaceId f : mesh.faces()) {
     const double v = factor_[static_cast<std::size_t>(f.idx)];
     Mat2 m = v * v * face_sizing[f];  // eq. 2
-    if (visible_[static_cast<std::size_t>(f.idx)] && params_.l_min > 0) {
+    if (visible_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0)) {
       const auto& vs = mesh.face_verts(f);
       Mat2 du;
       du.col(0) = mesh.u(vs[1]) - mesh.u(vs[0]);
@@ -64,7 +66,7 @@ void ViewSizing::modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing)
       dx.col(0) = mesh.x(mesh.face_node(f, 1)) - x0;
       dx.col(1) = mesh.x(mesh.face_node(f, 2)) - x0;
       const Vec3 centre = (x0 + mesh.x(mesh.face_node(f, 1)) + mesh.x(mesh.face_node(f, 2))) / 3.0;
-      m = screen_space_floor(m, now.projection_jacobian(centre), dx * du.inverse(), params_.l_min);
+      m = screen_space_bounds(m, now.projection_jacobian(centre), dx * du.inverse(), params_.l_min, params_.l_max);
     }
     face_sizing[f] = m;
   }

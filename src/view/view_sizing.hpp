@@ -2,7 +2,8 @@
 // sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
 // face's view factor (eqs. 3 and 4, then silhouette resampling); modify() scales the physical
 // tensors by v^2 (eq. 2) and, on faces visible now, bounds them in screen space so that no edge
-// is asked to be shorter than l_min pixels (eqs. 5 to 8).
+// is asked to be shorter than l_min pixels (eqs. 5 to 8) nor, when l_max is set, longer than
+// l_max pixels (an extension: the visible cloth keeps the degrees of freedom its folds need).
 #pragma once
 #include <vector>
 
@@ -12,9 +13,9 @@
 namespace vdc {
 
 // Eqs. 5 to 8: with S = J F (J the 2x3 projection Jacobian, F the 3x2 deformation gradient),
-// S^T min(S^-T M S^-1, l_min^-2) S, the minimum taken on eigenvalues. M is returned unchanged
-// when S is singular or l_min is 0.
-Mat2 screen_space_floor(const Mat2& m, const Mat23& projection_jacobian, const Mat32& deformation, double l_min);
+// S^T clamp(S^-T M S^-1, l_max^-2, l_min^-2) S, the clamp taken on eigenvalues; a bound of 0 is
+// no bound. M is returned unchanged when S is singular or both bounds are 0.
+Mat2 screen_space_bounds(const Mat2& m, const Mat23& projection_jacobian, const Mat32& deformation, double l_min, double l_max);
 
 struct ViewCounts {
   int visible = 0;       // in frame, outer side towards the camera

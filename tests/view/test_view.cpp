@@ -126,7 +126,7 @@ TEST(ScreenSpaceFloor, NoEdgeFinerThanLMinPixels) {
     Mat32 f;
     f << 1, 0, 0, std::cos(a), 0, std::sin(a);
     const Mat2 fine = Mat2::Identity() / (0.001 * 0.001);  // 1 mm edges
-    const Mat2 floored = screen_space_floor(fine, j, f, l_min);
+    const Mat2 floored = screen_space_bounds(fine, j, f, l_min, 0);
     for (double angle = 0; angle < M_PI; angle += M_PI / 12) {
       const Vec2 d(std::cos(angle), std::sin(angle));
       EXPECT_GE(screen_edge(floored, j, f, d), l_min * (1 - 1e-9)) << "tilt " << tilt << " direction " << angle;
@@ -138,7 +138,37 @@ TEST(ScreenSpaceFloor, NoEdgeFinerThanLMinPixels) {
     }
     // A tensor already coarser than l_min on screen is left as it is.
     const Mat2 coarse = Mat2::Identity() / (0.5 * 0.5);
-    EXPECT_LT((screen_space_floor(coarse, j, f, l_min) - coarse).norm(), 1e-9 * coarse.norm());
+    EXPECT_LT((screen_space_bounds(coarse, j, f, l_min, 0) - coarse).norm(), 1e-9 * coarse.norm());
+  }
+}
+
+TEST(ScreenSpaceBounds, NoVisibleEdgeLongerThanLMaxPixels) {
+  Camera c = front_camera();
+  c.position = Vec3::Zero();
+  c.target = Vec3(0, 0, -1);
+  const double l_min = 4, l_max = 20, depth = 2, fp = 360 / std::tan(20 * M_PI / 180);
+  const Vec3 centre(0.3, 0.1, -depth);
+  const Mat23 j = c.projection_jacobian(centre);
+  for (double tilt : {0.0, 60.0}) {
+    const double a = tilt * M_PI / 180;
+    Mat32 f;
+    f << 1, 0, 0, std::cos(a), 0, std::sin(a);
+    const Mat2 coarse = Mat2::Identity() / (0.5 * 0.5);  // 50 cm edges: hundreds of pixels
+    const Mat2 bounded = screen_space_bounds(coarse, j, f, l_min, l_max);
+    for (double angle = 0; angle < M_PI; angle += M_PI / 12) {
+      const Vec2 d(std::cos(angle), std::sin(angle));
+      EXPECT_LE(screen_edge(bounded, j, f, d), l_max * (1 + 1e-9)) << "tilt " << tilt << " direction " << angle;
+      EXPECT_GE(screen_edge(bounded, j, f, d), l_min * (1 - 1e-9)) << "tilt " << tilt << " direction " << angle;
+    }
+    // Facing the camera, the bound is exact: l_max pixels at depth z are l_max z / fp metres.
+    if (tilt == 0) {
+      Eigen::SelfAdjointEigenSolver<Mat2> eig(bounded);
+      EXPECT_NEAR(1 / std::sqrt(eig.eigenvalues()[0]), l_max * depth / fp, 1e-3 * l_max * depth / fp);
+    }
+    // A tensor between the bounds on screen is left as it is (2 cm is about 10 pixels here,
+    // 5 across the tilt).
+    const Mat2 between = Mat2::Identity() / (0.02 * 0.02);
+    EXPECT_LT((screen_space_bounds(between, j, f, l_min, l_max) - between).norm(), 1e-9 * between.norm());
   }
 }
 
