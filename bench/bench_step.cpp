@@ -1,5 +1,6 @@
-// One implicit step on uniform sheets of about 2k, 8k and 32k faces: assembly and linear solve
-// measured separately, for each linear solver. Run: build/bench/vdcloth_bench
+// One implicit step on uniform sheets: assembly and linear solve measured separately, for each
+// linear solver (the solve from 288 to 32k faces, the rest at about 2k, 8k and 32k faces).
+// Run: build/bench/vdcloth_bench
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -105,7 +106,7 @@ void BM_Step(benchmark::State& state) {
 BENCHMARK(BM_Assemble)->ArgsProduct({{32, 64, 128}, {1, 2}})->Unit(benchmark::kMillisecond);
 // Solvers: 0 cholmod-pcg, 1 cholmod, 2 ldlt, 3 cg (Jacobi). A lone solve of one matrix (direct
 // solvers factor it; cholmod-pcg too, being without a factor yet).
-BENCHMARK(BM_Solve)->ArgsProduct({{32, 64, 128}, {1, 2, 3}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Solve)->ArgsProduct({{12, 24, 32, 64, 96, 128}, {1, 2, 3}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Step)->ArgsProduct({{32, 64, 128}, {0, 1}, {1, 2}})->Unit(benchmark::kMillisecond)->MinTime(2.0);
 
 }  // namespace

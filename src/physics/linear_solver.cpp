@@ -3,6 +3,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
+#include <array>
 #include <cmath>
 #include <mutex>
 
@@ -88,12 +89,30 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
     }
     cholmod().nmethods = 1;
     cholmod().method[0].ordering = CHOLMOD_GIVEN;
+    amalgamate_for(n);
     cholmod_sparse view = Eigen::viewAsCholmod(a.selfadjointView<Eigen::Lower>());
     m_cholmodFactor = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &cholmod());
     m_isInitialized = true;
     m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
     m_analysisIsOk = m_cholmodFactor != nullptr;
     m_factorizationIsOk = false;
+  }
+
+ private:
+  // Below 10,000 nodes (about 20,000 faces), supernodes amalgamated three times as far as
+  // CHOLMOD's defaults (nrelax 4/16/48 columns, zrelax 0.8/0.1/0.05): fewer, larger supernodes.
+  // CHOLMOD opens OpenMP regions for every supernode, each ending in a futex call that costs
+  // microseconds in a virtual machine; on cloth systems of 300 to 18,000 faces the
+  // factorization and solve take a sixth to a half less time despite the extra fill, while
+  // at 33,000 faces the fill costs more than it saves (bench/RESULTS.md, "Larger supernodes").
+  void amalgamate_for(std::size_t nodes) {
+    const bool small = nodes < 10000;
+    const std::array<std::size_t, 3> nrelax = small ? std::array<std::size_t, 3>{12, 48, 144} : std::array<std::size_t, 3>{4, 16, 48};
+    const std::array<double, 3> zrelax = small ? std::array<double, 3>{1.05, 0.25, 0.125} : std::array<double, 3>{0.8, 0.1, 0.05};
+    for (std::size_t k = 0; k < 3; ++k) {
+      cholmod().nrelax[k] = nrelax[k];
+      cholmod().zrelax[k] = zrelax[k];
+    }
   }
 };
 
