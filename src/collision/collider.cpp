@@ -295,37 +295,47 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
                          [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]); });
       }
     }
-    // Cloth edges against cloth edges and obstacle edges.
-    const auto num_edges = static_cast<int32_t>(cloth_edges_.size());
+    // Cloth edges against cloth edges and obstacle edges, each cloth pair once. In the first
+    // round the cloth edge hierarchy descends together with itself and the obstacles', from
+    // fixed subtrees in parallel, each pair met from its earlier edge in leaf order; later,
+    // every edge queries, each pair from its lower-numbered edge, found through either
+    // hierarchy, and only edges with a moved node meet the obstacles.
     std::vector<Hits> edge_hits(cloth_edges_.size());
-#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
-    for (int32_t ea = 0; ea < num_edges; ++ea) {
+    auto cloth_pair = [&](int32_t ea, int32_t eb) {
       const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
-      const Aabb box = path_box({{-1, A[0]}, {-1, A[1]}});
-      Hits& out = edge_hits[static_cast<std::size_t>(ea)];
-      const bool all = first_round || has_moved({A[0], A[1]});
-      auto cloth_pair = [&](int32_t eb) {
-        const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
-        if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
-        ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, out);
-      };
-      // Each pair once: in the first round, when every edge queries the whole hierarchy, from
-      // its earlier edge in the hierarchy's order (without entering the subtrees before it);
-      // later, from its lower-numbered edge, found through either hierarchy.
-      if (first_round) {
-        edge_bvh->query_later(box, ea, cloth_pair);
-      } else {
-        cloth_edges_near(box, all, [&](int32_t eb) {
-          if (eb > ea) cloth_pair(eb);
-        });
+      const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
+      if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
+      ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
+    };
+    auto obstacle_pair = [&](std::size_t o, int32_t ea, int32_t eo) {
+      const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+      const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
+      const auto oi = static_cast<int32_t>(o);
+      ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
+    };
+    if (first_round) {
+      const std::vector<int32_t> units = edge_bvh->subtrees(kTraversalUnits);
+      const auto num_units = static_cast<int32_t>(units.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(params.threads)
+      for (int32_t u = 0; u < num_units; ++u) {
+        const int32_t unit = units[static_cast<std::size_t>(u)];
+        edge_bvh->later_pairs_under(unit, 0.0, cloth_pair);
+        for (std::size_t o = 0; o < obstacles_.size(); ++o)
+          edge_bvh->pairs_under(unit, *obstacle_edge_bvh[o], 0.0, [&](int32_t ea, int32_t eo) { obstacle_pair(o, ea, eo); });
       }
-      if (!all) continue;
-      for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-        const auto oi = static_cast<int32_t>(o);
-        obstacle_edge_bvh[o]->query(box, [&](int32_t eo) {
-          const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
-          ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, out);
+    } else {
+      const auto num_edges = static_cast<int32_t>(cloth_edges_.size());
+#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
+      for (int32_t ea = 0; ea < num_edges; ++ea) {
+        const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+        const Aabb box = path_box({{-1, A[0]}, {-1, A[1]}});
+        const bool all = has_moved({A[0], A[1]});
+        cloth_edges_near(box, all, [&](int32_t eb) {
+          if (eb > ea) cloth_pair(ea, eb);
         });
+        if (!all) continue;
+        for (std::size_t o = 0; o < obstacles_.size(); ++o)
+          obstacle_edge_bvh[o]->query(box, [&](int32_t eo) { obstacle_pair(o, ea, eo); });
       }
     }
     std::vector<ImpactConstraint> found;

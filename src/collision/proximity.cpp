@@ -189,56 +189,59 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   }
 
   // Edges: pairs whose closest points are inside both edges, each cloth pair once (from its
-  // earlier edge in the hierarchy's order).
+  // earlier edge in the hierarchy's order). The cloth edge hierarchy descends together with
+  // each other hierarchy, from fixed subtrees in parallel; a cloth edge's pairs are listed
+  // (cloth pairs, then each obstacle's) by the one subtree that holds it.
   auto interior = [](double s) { return s > 1e-6 && s < 1 - 1e-6; };
-  const auto ne = static_cast<int64_t>(cloth_edges_.size());
   std::vector<std::vector<ProximityPair>> edge_pairs(cloth_edges_.size());
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-  for (int64_t ea = 0; ea < ne; ++ea) {
+  auto cloth_edge_pair = [&](int32_t ea, int32_t eb) {
     const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+    const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
+    if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
+    const Vec3 a0 = cx(A[0]), a1 = cx(A[1]), b0 = cx(B[0]), b1 = cx(B[1]);
+    const Vec2 su = closest_segment_params(a0, a1, b0, b1);
+    if (!interior(su.x()) || !interior(su.y())) return;
+    const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
+    const double dist = sep.norm();
+    if (dist >= band || dist <= 1e-9 * band) return;
+    ProximityPair pair;
+    set_cloth(pair, 0, A[0], 1 - su.x());
+    set_cloth(pair, 1, A[1], su.x());
+    set_cloth(pair, 2, B[0], -(1 - su.y()));
+    set_cloth(pair, 3, B[1], -su.y());
+    pair.normal = sep / dist;
+    pair.distance = dist;
+    edge_pairs[static_cast<std::size_t>(ea)].push_back(pair);
+  };
+  auto obstacle_edge_pair = [&](std::size_t o, int32_t ea, int32_t eb) {
+    const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+    const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eb)];
+    const auto& ox = obstacle_x[o];
     const Vec3 a0 = cx(A[0]), a1 = cx(A[1]);
-    Aabb box = box_of({a0, a1});
-    box.pad(band);
-    auto& out = edge_pairs[static_cast<std::size_t>(ea)];
-    edge_bvh.query_later(box, static_cast<int32_t>(ea), [&](int32_t eb) {
-      const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
-      if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
-      const Vec3 b0 = cx(B[0]), b1 = cx(B[1]);
-      const Vec2 su = closest_segment_params(a0, a1, b0, b1);
-      if (!interior(su.x()) || !interior(su.y())) return;
-      const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
-      const double dist = sep.norm();
-      if (dist >= band || dist <= 1e-9 * band) return;
-      ProximityPair pair;
-      set_cloth(pair, 0, A[0], 1 - su.x());
-      set_cloth(pair, 1, A[1], su.x());
-      set_cloth(pair, 2, B[0], -(1 - su.y()));
-      set_cloth(pair, 3, B[1], -su.y());
-      pair.normal = sep / dist;
-      pair.distance = dist;
-      out.push_back(pair);
-    });
-    for (std::size_t o = 0; o < num_obstacles; ++o) {
-      const auto& ox = obstacle_x[o];
-      obstacle_edge_bvh[o]->query(box, [&](int32_t eb) {
-        const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eb)];
-        const Vec3 &b0 = ox[static_cast<std::size_t>(B[0])], &b1 = ox[static_cast<std::size_t>(B[1])];
-        const Vec2 su = closest_segment_params(a0, a1, b0, b1);
-        if (!interior(su.x()) || !interior(su.y())) return;
-        const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
-        if (sep.norm() >= band) return;
-        const Vec3 outward = outward_around(obstacles_[o], obstacle_adjacency_[o].edge, ox, eb);
-        if (outward.squaredNorm() == 0) return;
-        ProximityPair pair;
-        set_cloth(pair, 0, A[0], 1 - su.x());
-        set_cloth(pair, 1, A[1], su.x());
-        set_obstacle(pair, 2, o, B[0], -(1 - su.y()));
-        set_obstacle(pair, 3, o, B[1], -su.y());
-        pair.normal = obstacle_direction(sep, outward, band);
-        pair.distance = pair.normal.dot(sep);
-        out.push_back(pair);
-      });
-    }
+    const Vec3 &b0 = ox[static_cast<std::size_t>(B[0])], &b1 = ox[static_cast<std::size_t>(B[1])];
+    const Vec2 su = closest_segment_params(a0, a1, b0, b1);
+    if (!interior(su.x()) || !interior(su.y())) return;
+    const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
+    if (sep.norm() >= band) return;
+    const Vec3 outward = outward_around(obstacles_[o], obstacle_adjacency_[o].edge, ox, eb);
+    if (outward.squaredNorm() == 0) return;
+    ProximityPair pair;
+    set_cloth(pair, 0, A[0], 1 - su.x());
+    set_cloth(pair, 1, A[1], su.x());
+    set_obstacle(pair, 2, o, B[0], -(1 - su.y()));
+    set_obstacle(pair, 3, o, B[1], -su.y());
+    pair.normal = obstacle_direction(sep, outward, band);
+    pair.distance = pair.normal.dot(sep);
+    edge_pairs[static_cast<std::size_t>(ea)].push_back(pair);
+  };
+  const std::vector<int32_t> edge_units = edge_bvh.subtrees(kTraversalUnits);
+  const auto num_units = static_cast<int64_t>(edge_units.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (int64_t u = 0; u < num_units; ++u) {
+    const int32_t unit = edge_units[static_cast<std::size_t>(u)];
+    edge_bvh.later_pairs_under(unit, band, cloth_edge_pair);
+    for (std::size_t o = 0; o < num_obstacles; ++o)
+      edge_bvh.pairs_under(unit, *obstacle_edge_bvh[o], band, [&](int32_t ea, int32_t eb) { obstacle_edge_pair(o, ea, eb); });
   }
 
   std::vector<ProximityPair> pairs;

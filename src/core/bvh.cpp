@@ -26,6 +26,7 @@ Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
 int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres) {
   const auto index = static_cast<int32_t>(nodes_.size());
   nodes_.push_back(Node{});
+  nodes_[static_cast<std::size_t>(index)].first = static_cast<int32_t>(begin);
   nodes_[static_cast<std::size_t>(index)].last = static_cast<int32_t>(end) - 1;
   if (end - begin == 1) {
     nodes_[static_cast<std::size_t>(index)].prim = prims[begin];
@@ -83,40 +84,22 @@ void Bvh::measure_looseness() {
   looseness_ = leaves > 0 ? inner / leaves : inner;
 }
 
-void Bvh::self_pairs(const std::function<void(int32_t, int32_t)>& f) const {
-  if (!leaf_box_.empty()) self_node(0, f);
-}
-
-void Bvh::self_node(int32_t a, const std::function<void(int32_t, int32_t)>& f) const {
-  const Node& n = nodes_[static_cast<std::size_t>(a)];
-  if (n.left < 0) return;
-  self_node(n.left, f);
-  self_node(n.right, f);
-  cross(n.left, *this, n.right, f, true);
-}
-
-void Bvh::cross(int32_t a, const Bvh& other, int32_t b, const std::function<void(int32_t, int32_t)>& f, bool self) const {
-  const Node& na = nodes_[static_cast<std::size_t>(a)];
-  const Node& nb = other.nodes_[static_cast<std::size_t>(b)];
-  if (!na.box.overlaps(nb.box)) return;
-  if (na.left < 0 && nb.left < 0) {
-    if (self) f(std::min(na.prim, nb.prim), std::max(na.prim, nb.prim));
-    else f(na.prim, nb.prim);
-    return;
+std::vector<int32_t> Bvh::subtrees(int count) const {
+  std::vector<int32_t> units;
+  if (leaf_box_.empty()) return units;
+  units.push_back(0);
+  // Split every splittable unit, level by level, until there are enough (leaf order kept).
+  while (static_cast<int>(units.size()) < count) {
+    std::vector<int32_t> next;
+    for (int32_t u : units) {
+      const Node& n = nodes_[static_cast<std::size_t>(u)];
+      if (n.left < 0) next.push_back(u);
+      else next.insert(next.end(), {n.left, n.right});
+    }
+    if (next.size() == units.size()) break;
+    units = std::move(next);
   }
-  // Descend the larger box (or the one that is not a leaf).
-  const bool split_a = nb.left < 0 || (na.left >= 0 && (na.box.hi - na.box.lo).squaredNorm() >= (nb.box.hi - nb.box.lo).squaredNorm());
-  if (split_a) {
-    cross(na.left, other, b, f, self);
-    cross(na.right, other, b, f, self);
-  } else {
-    cross(a, other, nb.left, f, self);
-    cross(a, other, nb.right, f, self);
-  }
-}
-
-void Bvh::pairs_with(const Bvh& other, const std::function<void(int32_t, int32_t)>& f) const {
-  if (!leaf_box_.empty() && !other.leaf_box_.empty()) cross(0, other, 0, f, false);
+  return units;
 }
 
 }  // namespace vdc

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/math.hpp"
@@ -51,9 +51,33 @@ class Bvh {
   void refit(const std::vector<Aabb>& leaf_boxes);
 
   // Calls f(i, j) with i < j for every pair of primitives of this tree whose boxes overlap.
-  void self_pairs(const std::function<void(int32_t, int32_t)>& f) const;
+  template <class F>
+  void self_pairs(F&& f) const {
+    later_pairs_under(0, 0.0, [&](int32_t i, int32_t j) { f(std::min(i, j), std::max(i, j)); });
+  }
   // Calls f(i, j) for every primitive i of this tree and j of `other` whose boxes overlap.
-  void pairs_with(const Bvh& other, const std::function<void(int32_t, int32_t)>& f) const;
+  template <class F>
+  void pairs_with(const Bvh& other, F&& f) const {
+    pairs_under(0, other, 0.0, f);
+  }
+
+  // Units of work for a parallel traversal: disjoint subtrees (node indices) that together hold
+  // every primitive, at least `count` of them when the tree has that many primitives. The
+  // partition depends only on the tree and `count`, never on the thread count.
+  std::vector<int32_t> subtrees(int count) const;
+  // Calls f(i, j) for every primitive i under node `subtree` of this tree and j of `other` whose
+  // boxes overlap once this tree's boxes are grown by `pad`: both hierarchies descended at once,
+  // which tests far fewer boxes than one query per primitive.
+  template <class F>
+  void pairs_under(int32_t subtree, const Bvh& other, double pad, F&& f) const {
+    descend(subtree, other, pad, false, f);
+  }
+  // As pairs_under against this tree itself, each overlapping pair once: j after i in leaf
+  // order (subtrees wholly before i are not entered).
+  template <class F>
+  void later_pairs_under(int32_t subtree, double pad, F&& f) const {
+    descend(subtree, *this, pad, true, f);
+  }
   // Calls f(i) for every primitive whose box overlaps `box`.
   template <class F>
   void query(const Aabb& box, F&& f) const {
@@ -111,13 +135,40 @@ class Bvh {
     Aabb box;
     int32_t left = -1, right = -1;  // children; -1 for a leaf
     int32_t prim = -1;              // the primitive of a leaf
-    int32_t last = -1;              // the last leaf under the node, in leaf order
+    int32_t first = -1, last = -1;  // the first and last leaves under the node, in leaf order
   };
   int32_t build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
   void refit_node(int32_t n);
   void measure_looseness();
-  void self_node(int32_t a, const std::function<void(int32_t, int32_t)>& f) const;
-  void cross(int32_t a, const Bvh& other, int32_t b, const std::function<void(int32_t, int32_t)>& f, bool self) const;
+  // Simultaneous descent from node a of this tree and the root of `other`: pairs whose boxes
+  // overlap (this tree's grown by pad); with `later`, only pairs whose `other` primitive comes
+  // after this tree's in leaf order (other is then this tree). Splits the larger box first.
+  template <class F>
+  void descend(int32_t a, const Bvh& other, double pad, bool later, F&& f) const {
+    if (leaf_box_.empty() || other.leaf_box_.empty()) return;
+    std::array<std::pair<int32_t, int32_t>, 256> stack;
+    int top = 0;
+    stack[static_cast<std::size_t>(top++)] = {a, 0};
+    while (top > 0) {
+      const auto [ia, ib] = stack[static_cast<std::size_t>(--top)];
+      const Node& na = nodes_[static_cast<std::size_t>(ia)];
+      const Node& nb = other.nodes_[static_cast<std::size_t>(ib)];
+      if (later && nb.last <= na.first) continue;
+      if (!((na.box.lo.array() - pad <= nb.box.hi.array()).all() && (nb.box.lo.array() <= na.box.hi.array() + pad).all())) continue;
+      if (na.left < 0 && nb.left < 0) {
+        f(na.prim, nb.prim);
+        continue;
+      }
+      const bool split_a = nb.left < 0 || (na.left >= 0 && (na.box.hi - na.box.lo).squaredNorm() >= (nb.box.hi - nb.box.lo).squaredNorm());
+      if (split_a) {
+        stack[static_cast<std::size_t>(top++)] = {na.right, ib};
+        stack[static_cast<std::size_t>(top++)] = {na.left, ib};
+      } else {
+        stack[static_cast<std::size_t>(top++)] = {ia, nb.right};
+        stack[static_cast<std::size_t>(top++)] = {ia, nb.left};
+      }
+    }
+  }
 
   std::vector<Node> nodes_;
   std::vector<Aabb> leaf_box_;

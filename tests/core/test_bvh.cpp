@@ -78,6 +78,57 @@ TEST(Bvh, QueriesOfLaterPrimitivesMeetEachPairOnce) {
   }
 }
 
+// Units of work cover every primitive once, and descending from each unit finds, with a pad,
+// exactly the pairs whose boxes are within the pad of each other: each pair once within a tree
+// (from its earlier member's unit), every pair between two trees.
+TEST(Bvh, DescentsFromSubtreesMeetEachPaddedPairOnce) {
+  std::mt19937 rng(17);
+  const std::vector<Aabb> a = random_boxes(rng, 500, 1.0), b = random_boxes(rng, 300, 1.0);
+  const Bvh ta(a), tb(b);
+  const double pad = 0.03;
+  auto near = [&](const Aabb& p, const Aabb& q) {
+    Aabb g = p;
+    g.pad(pad);
+    return g.overlaps(q);
+  };
+  std::set<std::pair<int, int>> self_expected, cross_expected;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = i + 1; j < a.size(); ++j)
+      if (near(a[i], a[j])) self_expected.emplace(static_cast<int>(i), static_cast<int>(j));
+    for (std::size_t j = 0; j < b.size(); ++j)
+      if (near(a[i], b[j])) cross_expected.emplace(static_cast<int>(i), static_cast<int>(j));
+  }
+  Aabb everything;
+  everything.grow(Vec3::Constant(-10));
+  everything.grow(Vec3::Constant(10));
+  const Bvh all({everything});
+  for (int count : {1, 7, 64, 2000}) {
+    const std::vector<int32_t> units = ta.subtrees(count);
+    EXPECT_GE(static_cast<int>(units.size()), std::min(count, ta.size())) << count;
+    std::vector<int> owner(a.size(), -1);
+    std::set<std::pair<int, int>> self_found, cross_found;
+    int self_meetings = 0;
+    for (std::size_t u = 0; u < units.size(); ++u) {
+      ta.pairs_under(units[u], all, 0.0, [&](int32_t i, int32_t) {
+        EXPECT_EQ(owner[static_cast<std::size_t>(i)], -1) << "primitive " << i << " in two units";
+        owner[static_cast<std::size_t>(i)] = static_cast<int>(u);
+      });
+      ta.later_pairs_under(units[u], pad, [&](int32_t i, int32_t j) {
+        EXPECT_EQ(owner[static_cast<std::size_t>(i)], static_cast<int>(u));
+        self_found.emplace(std::min(i, j), std::max(i, j));
+        ++self_meetings;
+      });
+      ta.pairs_under(units[u], tb, pad, [&](int32_t i, int32_t j) { EXPECT_TRUE(cross_found.emplace(i, j).second); });
+    }
+    EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0) << count;
+    EXPECT_EQ(self_found, self_expected) << count;
+    EXPECT_EQ(self_meetings, static_cast<int>(self_expected.size())) << count;
+    EXPECT_EQ(cross_found, cross_expected) << count;
+  }
+  EXPECT_GT(self_expected.size(), 100u);
+  EXPECT_GT(cross_expected.size(), 50u);
+}
+
 TEST(Bvh, PairsBetweenTreesAndBoxQueriesMatchBruteForce) {
   std::mt19937 rng(6);
   auto a = random_boxes(rng, 300, 1.0), b = random_boxes(rng, 200, 1.0);
