@@ -2,10 +2,10 @@
 #include "collision/ccd.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <initializer_list>
-#include <vector>
 
 #include "collision/distance.hpp"
 
@@ -15,8 +15,28 @@ namespace {
 
 double eval(const std::array<double, 4>& k, double t) { return ((k[3] * t + k[2]) * t + k[1]) * t + k[0]; }
 
+// Candidate times without a heap allocation (continuous detection tests every candidate pair):
+// at most 10 from the cubic (2 ends, 2 critical points, 2 per bisected sign change over 3
+// intervals), 6 line crossings and 65 sampled minima, 81 in all.
+class Times {
+ public:
+  void push_back(double t) {
+    if (size_ < times_.size()) times_[size_++] = t;
+  }
+  const double* begin() const { return times_.data(); }
+  const double* end() const { return times_.data() + size_; }
+  double* begin() { return times_.data(); }
+  double* end() { return times_.data() + size_; }
+  std::size_t size() const { return size_; }
+  double operator[](std::size_t i) const { return times_[i]; }
+
+ private:
+  std::array<double, 96> times_{};
+  std::size_t size_ = 0;
+};
+
 // Roots of k[0] + k[1] t + k[2] t^2 in [0, 1] (all of them when the polynomial vanishes).
-void quadratic_roots(double c0, double c1, double c2, std::vector<double>& out) {
+void quadratic_roots(double c0, double c1, double c2, Times& out) {
   const double scale = std::max({std::abs(c0), std::abs(c1), std::abs(c2)});
   if (scale == 0) return;
   if (std::abs(c2) <= 1e-14 * scale) {
@@ -34,14 +54,16 @@ void quadratic_roots(double c0, double c1, double c2, std::vector<double>& out) 
 }
 
 // Candidate times of the cubic k on [0, 1]: ends, critical points, bisected sign changes.
-std::vector<double> cubic_candidates(const std::array<double, 4>& k) {
-  std::vector<double> cuts{0.0, 1.0};
-  std::vector<double> crit;
+Times cubic_candidates(const std::array<double, 4>& k) {
+  Times cuts;
+  cuts.push_back(0.0);
+  cuts.push_back(1.0);
+  Times crit;
   quadratic_roots(k[1], 2 * k[2], 3 * k[3], crit);
   for (double t : crit)
     if (t > 0 && t < 1) cuts.push_back(t);
   std::sort(cuts.begin(), cuts.end());
-  std::vector<double> out = cuts;
+  Times out = cuts;
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
     double lo = cuts[i], hi = cuts[i + 1];
     double flo = eval(k, lo), fhi = eval(k, hi);
@@ -61,9 +83,9 @@ std::vector<double> cubic_candidates(const std::array<double, 4>& k) {
 // fallback for motion that keeps the points coplanar throughout.
 // `lipschitz` bounds |d'(t)|: a sample farther than lipschitz / 64 + eta from contact cannot
 // have a contact within half a sample spacing, so only closer local minima are refined.
-void sampled_minima(const std::function<double(double)>& dist, double lipschitz, double eta, std::vector<double>& out) {
+void sampled_minima(const std::function<double(double)>& dist, double lipschitz, double eta, Times& out) {
   constexpr int kSamples = 64;
-  std::vector<double> d(kSamples + 1);
+  std::array<double, kSamples + 1> d{};
   for (int i = 0; i <= kSamples; ++i) d[static_cast<std::size_t>(i)] = dist(static_cast<double>(i) / kSamples);
   for (int i = 0; i <= kSamples; ++i) {
     const double left = i > 0 ? d[static_cast<std::size_t>(i - 1)] : INFINITY, right = i < kSamples ? d[static_cast<std::size_t>(i + 1)] : INFINITY;
@@ -81,7 +103,7 @@ void sampled_minima(const std::function<double(double)>& dist, double lipschitz,
 }
 
 template <class Points, class Distance>
-Impact earliest(const std::vector<double>& candidates, const Points& at, const Distance& distance, double eta) {
+Impact earliest(const Times& candidates, const Points& at, const Distance& distance, double eta) {
   Impact r;
   for (double t : candidates) {
     if (!(t >= 0 && t <= 1) || (r.hit && t >= r.t)) continue;
@@ -104,7 +126,7 @@ bool nearly_degenerate(const std::array<double, 4>& k, std::initializer_list<Vec
 
 // Times at which point p crosses the line through a and b, in the plane with normal n (fixed).
 void line_crossings(const Vec3& p, const Vec3& dp, const Vec3& a, const Vec3& da, const Vec3& b, const Vec3& db, const Vec3& n,
-                    std::vector<double>& out) {
+                    Times& out) {
   // g(t) = ((b - a) x (p - a)) . n, quadratic in t.
   const Vec3 e = b - a, de = db - da, w = p - a, dw = dp - da;
   const double c0 = e.cross(w).dot(n), c1 = (e.cross(dw) + de.cross(w)).dot(n), c2 = de.cross(dw).dot(n);
@@ -136,7 +158,7 @@ Impact vertex_face_ccd(const Vec3& p0, const Vec3& p1, const Vec3& a0, const Vec
   const auto k = coplanarity_cubic(b0 - a0, db - da, c0 - a0, dc - da, p0 - a0, dp - da);
   auto at = [&](double t) { return std::array<Vec3, 4>{p0 + t * dp, a0 + t * da, b0 + t * db, c0 + t * dc}; };
   auto dist = [](const std::array<Vec3, 4>& q) { return point_triangle_distance(q[0], q[1], q[2], q[3]); };
-  std::vector<double> cand = cubic_candidates(k);
+  Times cand = cubic_candidates(k);
   if (nearly_degenerate(k, {b0 - a0, c0 - a0, p0 - a0, db - da, dc - da, dp - da})) {
     // Coplanar motion: the point can only enter the triangle across an edge line.
     Vec3 n = (b0 - a0).cross(c0 - a0);
@@ -157,7 +179,7 @@ Impact edge_edge_ccd(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3&
   const auto k = coplanarity_cubic(b0 - a0, db - da, d0 - c0, dd - dc, c0 - a0, dc - da);
   auto at = [&](double t) { return std::array<Vec3, 4>{a0 + t * da, b0 + t * db, c0 + t * dc, d0 + t * dd}; };
   auto dist = [](const std::array<Vec3, 4>& q) { return segment_segment_distance(q[0], q[1], q[2], q[3]); };
-  std::vector<double> cand = cubic_candidates(k);
+  Times cand = cubic_candidates(k);
   if (nearly_degenerate(k, {b0 - a0, d0 - c0, c0 - a0, db - da, dd - dc, dc - da})) sampled_minima([&](double t) { return dist(at(t)); }, reach, eta, cand);
   return earliest(cand, at, dist, eta);
 }
