@@ -68,17 +68,20 @@ std::array<Vec3, 8> Camera::frustum_corners() const {
 
 Frustum::Frustum(const Camera& camera) : eye(camera.position), planes(camera.frustum_planes()), corners(camera.frustum_corners()) {}
 
+double frustum_plane_separation(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c) {
+  double separation = 0;
+  for (const auto& [n, offset] : frustum.planes)
+    separation = std::max(separation, -std::max({n.dot(a) + offset, n.dot(b) + offset, n.dot(c) + offset}));
+  return separation;
+}
+
 double distance_to_frustum(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, double cap) {
   const auto& planes = frustum.planes;
   const std::array<Vec3, 3> tri{a, b, c};
   // Fast paths: a corner inside, or the whole face at least cap beyond one plane.
   for (const Vec3& p : tri)
     if (std::all_of(planes.begin(), planes.end(), [&](const auto& pl) { return pl.first.dot(p) + pl.second >= 0; })) return 0;
-  for (const auto& [n, offset] : planes) {
-    double nearest = -std::numeric_limits<double>::infinity();
-    for (const Vec3& p : tri) nearest = std::max(nearest, n.dot(p) + offset);
-    if (nearest <= -cap) return cap;
-  }
+  if (frustum_plane_separation(frustum, a, b, c) >= cap) return cap;
   // Two disjoint convex sets: the distance is the smallest vertex-to-face or edge-to-edge one;
   // they meet when an edge of either crosses a face of the other.
   const auto& k = frustum.corners;

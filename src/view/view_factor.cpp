@@ -6,14 +6,27 @@
 
 namespace vdc {
 
+namespace {
+
+bool faces_camera(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c) {
+  return area_normal(a, b, c).dot(frustum.eye - (a + b + c) / 3.0) > 0;
+}
+
+// Eq. 3: from v_fb (in frame) down to v_out at `margin` from the frustum, linearly.
+double factor_at(double distance, bool front, const ViewParams& p) {
+  const double v_fb = front ? 1.0 : p.v_back;
+  if (distance <= 0) return v_fb;
+  if (distance >= p.margin) return p.v_out;
+  return v_fb - distance / p.margin * (v_fb - p.v_out);
+}
+
+}  // namespace
+
 FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p) {
   FaceView view;
-  view.front = area_normal(a, b, c).dot(frustum.eye - (a + b + c) / 3.0) > 0;
+  view.front = faces_camera(frustum, a, b, c);
   view.distance = distance_to_frustum(frustum, a, b, c, p.margin);
-  const double v_fb = view.front ? 1.0 : p.v_back;
-  if (view.distance <= 0) view.factor = v_fb;
-  else if (view.distance >= p.margin) view.factor = p.v_out;
-  else view.factor = v_fb - view.distance / p.margin * (v_fb - p.v_out);
+  view.factor = factor_at(view.distance, view.front, p);
   return view;
 }
 
@@ -39,7 +52,14 @@ double anticipated_view_factor(const AnticipationWindow& window, const Vec3& a, 
   for (std::size_t k = 0; k < window.frusta.size(); ++k) {
     const double w = window.weights[k];
     if (w <= best) break;  // later samples weigh less still
-    best = std::max(best, w * face_view(window.frusta[k], a, b, c, p).factor);
+    // The factor at the planes' lower bound of the distance bounds it from above (eq. 3 is
+    // linear in the distance between two values): a sample that cannot raise the best is not
+    // measured exactly.
+    const Frustum& frustum = window.frusta[k];
+    const bool front = faces_camera(frustum, a, b, c);
+    const double d = frustum_plane_separation(frustum, a, b, c);
+    if (w * std::max(factor_at(d, front, p), p.v_out) <= best) continue;
+    best = std::max(best, w * face_view(frustum, a, b, c, p).factor);
   }
   return best;
 }
