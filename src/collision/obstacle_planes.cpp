@@ -7,17 +7,20 @@
 namespace vdc {
 
 std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
-                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius) {
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, int threads) {
   std::vector<ObstaclePlane> planes(points.size());
   std::vector<double> best(points.size(), radius);
   std::vector<Bvh> trees;
-  for (std::size_t o = 0; o < obstacles.size(); ++o) {
-    std::vector<Aabb> boxes(obstacles[o].faces.size());
-    for (std::size_t f = 0; f < boxes.size(); ++f)
-      for (int32_t v : obstacles[o].faces[f]) boxes[f].grow(obstacle_x[o][static_cast<std::size_t>(v)]);
-    trees.emplace_back(boxes);
-  }
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  for (std::size_t o = 0; o < obstacles.size(); ++o)
+    trees.emplace_back(leaf_boxes(obstacles[o].faces.size(), threads, [&](std::size_t f) {
+      Aabb box;
+      for (int32_t v : obstacles[o].faces[f]) box.grow(obstacle_x[o][static_cast<std::size_t>(v)]);
+      return box;
+    }));
+  const auto n = static_cast<int64_t>(points.size());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
+  for (int64_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
     const Vec3& p = points[i];
     for (std::size_t o = 0; o < obstacles.size(); ++o) {
       const auto& ox = obstacle_x[o];

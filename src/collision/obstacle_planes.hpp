@@ -1,7 +1,7 @@
 // The obstacle point nearest to each cloth node, for the obstacle-proximity sizing criterion
 // (Narain et al. 2012, section 5): searched within a radius, with the direction from that point
 // to the node (the obstacle's face normal when the node lies on it). Branch and bound over each
-// obstacle's hierarchy.
+// obstacle's hierarchy, the nodes on `threads` threads.
 #pragma once
 #include <vector>
 
@@ -11,6 +11,6 @@
 namespace vdc {
 
 std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
-                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius);
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, int threads);
 
 }  // namespace vdc

@@ -138,7 +138,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
         near_meshes.push_back(garment_meshes[other]);
         near_x.push_back(garment_x[other]);
       }
-    const std::vector<ObstaclePlane> planes = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max);
+    const std::vector<ObstaclePlane> planes = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, options_.threads);
     if (options_.mode == SimMode::View) {
       auto tv = std::chrono::steady_clock::now();
       ViewSizing view(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);

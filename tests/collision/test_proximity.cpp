@@ -184,8 +184,11 @@ TEST(ObstaclePlanes, NearestPointMatchesBruteForce) {
   std::vector<Vec3> points;
   for (int i = 0; i < 300; ++i) points.emplace_back(U(rng), U(rng), U(rng));
   const double radius = 0.2;
-  auto planes = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius);
+  auto planes = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius, 2);
+  const auto serial = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius, 1);
   for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(planes[i].point, serial[i].point) << i;  // the same on any number of threads
+    EXPECT_EQ(planes[i].normal, serial[i].normal) << i;
     double best = radius;
     for (const auto& f : sphere.faces)
       best = std::min(best, point_triangle_distance(points[i], ball.positions[static_cast<std::size_t>(f[0])],
