@@ -404,6 +404,10 @@ FrameStats Simulation::step_frame() {
   if (restart_pending_) rebuild();  // unless remeshing just did
   for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
   ++frame_;
+  // A zone that fell back to its start-of-step positions rode along with the obstacles it
+  // touched, which need not keep it outside them: such a frame ends untangled (Volino and
+  // Magnenat-Thalmann 2006), as a remesh does.
+  if (stats.collision_fallbacks > 0) untangle_cloth(stats);
   scatter_state();
   place_obstacles();
   stats.frame = frame_;
