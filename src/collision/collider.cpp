@@ -314,15 +314,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
     };
     if (first_round) {
-      const std::vector<int32_t> units = edge_bvh->subtrees(kTraversalUnits);
-      const auto num_units = static_cast<int32_t>(units.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(params.threads)
-      for (int32_t u = 0; u < num_units; ++u) {
-        const int32_t unit = units[static_cast<std::size_t>(u)];
-        edge_bvh->later_pairs_under(unit, 0.0, cloth_pair);
-        for (std::size_t o = 0; o < obstacles_.size(); ++o)
-          edge_bvh->pairs_under(unit, *obstacle_edge_bvh[o], 0.0, [&](int32_t ea, int32_t eo) { obstacle_pair(o, ea, eo); });
-      }
+      pairs_by_subtree(*edge_bvh, obstacle_edge_bvh, 0.0, kTraversalUnits, params.threads, cloth_pair, obstacle_pair);
     } else {
       const auto num_edges = static_cast<int32_t>(cloth_edges_.size());
 #pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)

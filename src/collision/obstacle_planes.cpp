@@ -19,8 +19,8 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
     }));
   const auto n = static_cast<int64_t>(points.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
-  for (int64_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
+  for (int64_t node = 0; node < n; ++node) {
+    const auto i = static_cast<std::size_t>(node);
     const Vec3& p = points[i];
     for (std::size_t o = 0; o < obstacles.size(); ++o) {
       const auto& ox = obstacle_x[o];

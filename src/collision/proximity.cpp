@@ -234,15 +234,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     pair.distance = pair.normal.dot(sep);
     edge_pairs[static_cast<std::size_t>(ea)].push_back(pair);
   };
-  const std::vector<int32_t> edge_units = edge_bvh.subtrees(kTraversalUnits);
-  const auto num_units = static_cast<int64_t>(edge_units.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (int64_t u = 0; u < num_units; ++u) {
-    const int32_t unit = edge_units[static_cast<std::size_t>(u)];
-    edge_bvh.later_pairs_under(unit, band, cloth_edge_pair);
-    for (std::size_t o = 0; o < num_obstacles; ++o)
-      edge_bvh.pairs_under(unit, *obstacle_edge_bvh[o], band, [&](int32_t ea, int32_t eb) { obstacle_edge_pair(o, ea, eb); });
-  }
+  pairs_by_subtree(edge_bvh, obstacle_edge_bvh, band, kTraversalUnits, threads, cloth_edge_pair, obstacle_edge_pair);
 
   std::vector<ProximityPair> pairs;
   auto keep = [&](const ProximityPair& p) {
