@@ -20,7 +20,7 @@ struct CollisionParams {
   double thickness = 0.002;  // m: the cloth's collision thickness (CCD tolerance 1e-3 of it)
   double impact_separation = 0.0002;   // m: impacts are projected to at least this separation
   double repulsion_thickness = 0.004;  // m: pairs closer than this are repelled in the implicit step
-  double repulsion_stiffness = 1.0;    // k h^2 / m of a pair: the share of a gap a step closes is k h^2 / (m + k h^2)
+  double repulsion_stiffness = 3.0;    // k h^2 / m of a pair: the share of a gap a step closes is k h^2 / (m + k h^2)
   double friction = 0.3;               // Coulomb coefficient of proximity pairs
   int max_iterations = 20;   // detection-projection rounds before the fallback
   int untangle_iterations = 100;  // passes of untangling (collision/untangle.hpp) after a remesh

@@ -16,7 +16,7 @@ namespace vdc {
 
 struct ContactParams {
   double band = 0.004;    // m: the repulsion thickness
-  double stiffness = 1;   // k h^2 / m_eff
+  double stiffness = 3;   // k h^2 / m_eff
   double friction = 0.3;  // Coulomb coefficient
 };
 

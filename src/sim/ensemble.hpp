@@ -19,8 +19,9 @@ class Ensemble {
   // they came from in errors.
   Ensemble(Scene scene, const SimOptions& options, Simulation::Log log, std::vector<ResumePoint> from, const std::string& source);
 
-  // Every part one frame. Counts, faces and part timings are summed over the parts; `seconds`
-  // is the wall time of the whole frame. Throws the first part's SimulationError.
+  // Every part one frame, the parts that took longest last frame first. Counts, faces and part
+  // timings are summed over the parts; `seconds` is the wall time of the whole frame. Throws the
+  // first part's SimulationError (in part order).
   FrameStats step_frame();
 
   void restart_solvers();  // every part's (Simulation::restart_solvers)
@@ -46,6 +47,7 @@ class Ensemble {
   Simulation::Log log_;
   std::vector<std::unique_ptr<Simulation>> parts_;
   int team_ = 1;  // threads stepping parts side by side
+  std::vector<double> part_seconds_;  // each part's wall time in the last frame: the order parts start in
 };
 
 // Adds one part's frame to a frame of the whole (everything but frame and seconds).

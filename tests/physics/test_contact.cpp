@@ -110,9 +110,9 @@ TEST(Contact, ClothClothForcesConserveMomentum) {
   Vec3 total = Vec3::Zero();
   for (std::size_t j = 0; j < 4; ++j) total += terms[0].weights[j] * terms[0].rhs;
   EXPECT_LT(total.norm(), 1e-15);
-  // The normal force is the penalty's: stiffness m_eff / h^2 times the gap.
+  // The normal force is the penalty's: stiffness m_eff / h^2 times the gap (the default stiffness).
   const double m_eff = 1 / (1 / 1e-3 + 0.04 / 2e-3 + 0.25 / 1.5e-3 + 0.09 / 1e-3);
-  EXPECT_NEAR(terms[0].normal_force, m_eff / (kH * kH) * (0.004 - 0.001), 1e-12);
+  EXPECT_NEAR(terms[0].normal_force, ContactParams{}.stiffness * m_eff / (kH * kH) * (0.004 - 0.001), 1e-12);
 }
 
 }  // namespace
