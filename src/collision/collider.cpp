@@ -80,8 +80,7 @@ Collider::Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::
     edges_of(obstacles_[o].faces, obstacle_edges_[o], obstacle_face_edges_[o]);
     obstacle_adjacency_.push_back(adjacency_of(obstacles_[o], obstacle_face_edges_[o], obstacle_edges_[o].size()));
   }
-  obstacle_face_tree_.resize(obstacles_.size());
-  obstacle_edge_tree_.resize(obstacles_.size());
+  obstacle_trees_.resize(obstacles_.size());
   set_cloth(cloth_faces, num_nodes);
 }
 
@@ -130,17 +129,9 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   };
   std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-    const auto oi = static_cast<int32_t>(o);
-    const std::vector<Aabb> faces = leaf_boxes(obstacles_[o].faces.size(), params.threads, [&](std::size_t i) {
-      const auto& f = obstacles_[o].faces[i];
-      return path_box({{oi, f[0]}, {oi, f[1]}, {oi, f[2]}});
-    });
-    const std::vector<Aabb> edges = leaf_boxes(obstacle_edges_[o].size(), params.threads, [&](std::size_t i) {
-      const auto& e = obstacle_edges_[o][i];
-      return path_box({{oi, e[0]}, {oi, e[1]}});
-    });
-    obstacle_face_bvh.push_back(&obstacle_face_tree_[o].update(faces));
-    obstacle_edge_bvh.push_back(&obstacle_edge_tree_[o].update(edges));
+    obstacle_trees_[o].sweep(obstacles_[o].faces, obstacle_edges_[o], obstacle_start[o], obstacle_end[o], eta, params.threads);
+    obstacle_face_bvh.push_back(&obstacle_trees_[o].faces());
+    obstacle_edge_bvh.push_back(&obstacle_trees_[o].edges());
   }
   std::vector<char> cloth_node_used(static_cast<std::size_t>(num_nodes_), 0);
   for (const auto& f : cloth_faces_)
@@ -291,7 +282,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
 #pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
       for (int32_t v = 0; v < nv; ++v) {
         const PointRef p{static_cast<int32_t>(o), v};
-        cloth_faces_near(path_box({p}), first_round,
+        cloth_faces_near(obstacle_trees_[o].vertex_box(v), first_round,
                          [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]); });
       }
     }

@@ -12,6 +12,7 @@
 
 #include "core/bvh.hpp"
 #include "core/math.hpp"
+#include "collision/obstacle_trees.hpp"
 #include "collision/proximity.hpp"
 
 namespace vdc {
@@ -85,9 +86,10 @@ class Collider {
   std::vector<std::vector<std::array<int32_t, 3>>> obstacle_face_edges_;
   std::vector<ObstacleAdjacency> obstacle_adjacency_;
   int32_t num_nodes_;
-  // Hierarchies kept from step to step, refit to the boxes of each query.
+  // Hierarchies kept from step to step, refit to the boxes of each query (an obstacle's only
+  // when it has moved since the last).
   RefitBvh cloth_face_tree_, cloth_edge_tree_;
-  std::vector<RefitBvh> obstacle_face_tree_, obstacle_edge_tree_;
+  std::vector<ObstacleTrees> obstacle_trees_;
 };
 
 }  // namespace vdc

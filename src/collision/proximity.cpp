@@ -64,18 +64,9 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   const std::size_t num_obstacles = obstacles_.size();
   std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < num_obstacles; ++o) {
-    const auto& ox = obstacle_x[o];
-    auto at = [&](int32_t i) -> const Vec3& { return ox[static_cast<std::size_t>(i)]; };
-    const std::vector<Aabb> faces = leaf_boxes(obstacles_[o].faces.size(), threads, [&](std::size_t i) {
-      const auto& f = obstacles_[o].faces[i];
-      return box_of({at(f[0]), at(f[1]), at(f[2])});
-    });
-    const std::vector<Aabb> edges = leaf_boxes(obstacle_edges_[o].size(), threads, [&](std::size_t i) {
-      const auto& e = obstacle_edges_[o][i];
-      return box_of({at(e[0]), at(e[1])});
-    });
-    obstacle_face_bvh.push_back(&obstacle_face_tree_[o].update(faces));
-    obstacle_edge_bvh.push_back(&obstacle_edge_tree_[o].update(edges));
+    obstacle_trees_[o].hold(obstacles_[o].faces, obstacle_edges_[o], obstacle_x[o], threads);
+    obstacle_face_bvh.push_back(&obstacle_trees_[o].faces());
+    obstacle_edge_bvh.push_back(&obstacle_trees_[o].edges());
   }
 
   // Fills slot j of a pair with cloth node i (a handle becomes a moving fixed point).

@@ -52,24 +52,6 @@ int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t e
   return index;
 }
 
-void Bvh::refit(const std::vector<Aabb>& leaf_boxes) {
-  leaf_box_ = leaf_boxes;
-  if (!leaf_box_.empty()) refit_node(0);
-  measure_looseness();
-}
-
-void Bvh::refit_node(int32_t i) {
-  Node& n = nodes_[static_cast<std::size_t>(i)];
-  if (n.left < 0) {
-    n.box = leaf_box_[static_cast<std::size_t>(n.prim)];
-    return;
-  }
-  refit_node(n.left);
-  refit_node(n.right);
-  n.box = nodes_[static_cast<std::size_t>(n.left)].box;
-  n.box.grow(nodes_[static_cast<std::size_t>(n.right)].box);
-}
-
 namespace {
 // Half the surface area of a box (the surface area heuristic's measure).
 double half_area(const Aabb& b) {
@@ -77,6 +59,26 @@ double half_area(const Aabb& b) {
   return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
 }
 }  // namespace
+
+void Bvh::refit(std::vector<Aabb> leaf_boxes) {
+  leaf_box_ = std::move(leaf_boxes);
+  if (leaf_box_.empty()) return;
+  // Children come after their parent (the build numbers nodes depth first), so one backward
+  // pass refits bottom-up, and measures the looseness on the way.
+  double inner = 0, leaves = 0;
+  for (auto i = static_cast<int64_t>(nodes_.size()) - 1; i >= 0; --i) {
+    Node& n = nodes_[static_cast<std::size_t>(i)];
+    if (n.left < 0) {
+      n.box = leaf_box_[static_cast<std::size_t>(n.prim)];
+      leaves += half_area(n.box);
+    } else {
+      n.box = nodes_[static_cast<std::size_t>(n.left)].box;
+      n.box.grow(nodes_[static_cast<std::size_t>(n.right)].box);
+      inner += half_area(n.box);
+    }
+  }
+  looseness_ = leaves > 0 ? inner / leaves : inner;
+}
 
 void Bvh::measure_looseness() {
   double inner = 0, leaves = 0;

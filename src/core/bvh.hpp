@@ -48,7 +48,8 @@ class Bvh {
   // One box per primitive (a triangle's swept, padded box, say). Builds the tree.
   explicit Bvh(const std::vector<Aabb>& leaf_boxes);
   // New boxes for the same primitives, in the same order: refits without changing the tree.
-  void refit(const std::vector<Aabb>& leaf_boxes);
+  void refit(std::vector<Aabb> leaf_boxes);
+  const std::vector<Aabb>& leaf_boxes() const { return leaf_box_; }
 
   // Calls f(i, j) with i < j for every pair of primitives of this tree whose boxes overlap.
   template <class F>
@@ -138,7 +139,6 @@ class Bvh {
     int32_t first = -1, last = -1;  // the first and last leaves under the node, in leaf order
   };
   int32_t build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
-  void refit_node(int32_t n);
   void measure_looseness();
   // Simultaneous descent from node a of this tree and the root of `other`: pairs whose boxes
   // overlap (this tree's grown by pad); with `later`, only pairs whose `other` primitive comes
@@ -201,10 +201,11 @@ void pairs_by_subtree(const Bvh& tree, const std::vector<const Bvh*>& others, do
 class RefitBvh {
  public:
   explicit RefitBvh(double max_loosening = 1.2) : max_loosening_(max_loosening) {}
-  const Bvh& update(const std::vector<Aabb>& leaf_boxes) {
+  const Bvh& update(std::vector<Aabb> leaf_boxes) {
     if (tree_ && tree_->size() == static_cast<int32_t>(leaf_boxes.size())) {
-      tree_->refit(leaf_boxes);
+      tree_->refit(std::move(leaf_boxes));
       if (tree_->looseness() <= max_loosening_ * built_looseness_) return *tree_;
+      leaf_boxes = tree_->leaf_boxes();
     }
     tree_ = std::make_unique<Bvh>(leaf_boxes);
     built_looseness_ = tree_->looseness();

@@ -280,7 +280,8 @@ std::vector<VelocityConstraint> Simulation::constraints(double t_end, double h) 
   return out;
 }
 
-void Simulation::advance(double t, double h, int depth, FrameStats& stats, double refused_dv) {
+void Simulation::advance(double t, double t_end, int depth, FrameStats& stats, double refused_dv) {
+  const double h = t_end - t;
   StepParams p;
   p.h = h;
   p.gravity = scene_.gravity;
@@ -288,10 +289,10 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats, doubl
   p.drag = scene_.air.drag;
   p.wind = scene_.air.wind;
   p.threads = options_.threads;
-  const std::vector<VelocityConstraint> held = constraints(t + h, h);
+  const std::vector<VelocityConstraint> held = constraints(t_end, h);
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
   for (const auto& c : held) fixed[static_cast<std::size_t>(c.node)] = 1;
-  ObstacleMotion obstacles{obstacle_positions(t), obstacle_positions(t + h)};
+  ObstacleMotion obstacles{obstacle_positions(t), obstacle_positions(t_end)};
   const std::vector<ContactTerm> contacts = proximity_contacts(fixed, obstacles, h, stats);
   const Eigen::VectorXd x_start = x_, v_start = v_;
   const double limit = scene_.solver.max_velocity_change;
@@ -347,8 +348,9 @@ void Simulation::advance(double t, double h, int depth, FrameStats& stats, doubl
     log_(msg.str());
   }
   const double dv = r.max_dv > scene_.solver.max_velocity_change ? r.max_dv : 0;
-  advance(t, h / 2, depth + 1, stats, dv);
-  advance(t + h / 2, h / 2, depth + 1, stats, dv);
+  const double t_mid = t + h / 2;
+  advance(t, t_mid, depth + 1, stats, dv);
+  advance(t_mid, t_end, depth + 1, stats, dv);
 }
 
 std::vector<ContactTerm> Simulation::proximity_contacts(const std::vector<char>& fixed, const ObstacleMotion& obstacles, double h,
@@ -400,9 +402,13 @@ FrameStats Simulation::step_frame() {
   FrameStats stats;
   const double h = scene_.frame_time / scene_.substeps;
   const double t_frame = time();
+  // Each step boundary's time computed once, so that a step starts at exactly the time the last
+  // one ended (and the frame ends at the next frame's time): the obstacles' positions there, and
+  // their collision hierarchies, are then the ones already computed, not a rounding away.
+  auto boundary = [&](int s) { return s == scene_.substeps ? (frame_ + 1) * scene_.frame_time : t_frame + s * h; };
   if (options_.mode != SimMode::Fixed) remesh_garments(stats);
   if (restart_pending_) rebuild();  // unless remeshing just did
-  for (int s = 0; s < scene_.substeps; ++s) advance(t_frame + s * h, h, 0, stats);
+  for (int s = 0; s < scene_.substeps; ++s) advance(boundary(s), boundary(s + 1), 0, stats);
   ++frame_;
   // A zone that fell back to its start-of-step positions rode along with the obstacles it
   // touched, which need not keep it outside them: such a frame ends untangled (Volino and

@@ -107,9 +107,9 @@ class Simulation {
   void gather_state();                  // meshes -> x_, v_
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
-  // One step of size h at time t, at halving depth `depth`; refused_dv is the velocity change
+  // One step from time t to t_end, at halving depth `depth`; refused_dv is the velocity change
   // that made the parent step refuse (0 at the top), to tell when halving stops helping.
-  void advance(double t, double h, int depth, FrameStats& stats, double refused_dv = 0);
+  void advance(double t, double t_end, int depth, FrameStats& stats, double refused_dv = 0);
   // Obstacle vertex positions at the start and end of a step, per obstacle.
   struct ObstacleMotion {
     std::vector<std::vector<Vec3>> start, end;

@@ -3,6 +3,7 @@
 // beyond the band, and no pair inside a flat sheet.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <random>
 
 #include "collision/collider.hpp"
@@ -174,6 +175,71 @@ TEST(Proximity, AFlatSheetDoesNotRepelItselfEvenWhenTheBandReachesPastItsNeighbo
 
 namespace vdc {
 namespace {
+
+// A cap of cloth over a ball, some nodes inside the band and some sunk: every obstacle vertex's
+// pair is its nearest cloth face within the band, as a search over all faces finds it, and the
+// same pairs come whether the obstacle's hierarchies are refit for the query or kept from a
+// continuous detection whose step ended at these positions.
+TEST(Proximity, ObstacleVerticesPairWithTheirNearestClothFaceWhetherHierarchiesAreKeptOrRefit) {
+  const MeshSource ball = make_icosphere(0.1, 3);
+  CollisionMesh sphere;
+  for (const auto& f : ball.faces) sphere.faces.push_back({f[0].node, f[1].node, f[2].node});
+  const MeshSource sheet = make_grid(0.24, 0.24, 24, 24);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> gap(-0.001, 0.005);
+  Scenario s;
+  s.faces = position_triangles(sheet);
+  s.x.resize(3 * static_cast<int64_t>(sheet.positions.size()));
+  for (std::size_t i = 0; i < sheet.positions.size(); ++i) {
+    const Vec3& q = sheet.positions[i];  // (u, 0, -v) on [0, 0.24]^2
+    s.x.segment<3>(3 * static_cast<int64_t>(i)) = Vec3(q.x() - 0.12, 0.1, q.z() + 0.12).normalized() * (0.1 + gap(rng));
+  }
+  s.v = Eigen::VectorXd::Zero(s.x.size());
+  s.obstacles = {sphere};
+  s.ox = {ball.positions};
+  std::vector<Vec3> velocity_tag(ball.positions.size());  // names the vertex of each pair
+  for (std::size_t i = 0; i < velocity_tag.size(); ++i) velocity_tag[i] = Vec3(static_cast<double>(i), 0, 0);
+  s.ov = {velocity_tag};
+  const double band = 0.004;
+  auto vertex_pairs = [&](const std::vector<ProximityPair>& pairs) {
+    std::map<int, ProximityPair> by_vertex;
+    for (const auto& p : pairs)
+      if (p.nodes[3] < 0 && p.weights[3] == -1.0 && p.nodes[0] >= 0) by_vertex[static_cast<int>(p.obstacle_velocity[3].x())] = p;
+    return by_vertex;
+  };
+  const auto refit = vertex_pairs(s.find(band));
+
+  Collider kept(s.faces, s.obstacles, static_cast<int32_t>(s.x.size() / 3));
+  std::vector<char> fixed(static_cast<std::size_t>(s.x.size() / 3), 0);
+  std::vector<Vec3> earlier = ball.positions;  // the ball was 1 cm lower at the step's start
+  for (Vec3& p : earlier) p.y() -= 0.01;
+  Eigen::VectorXd x_end = s.x;
+  kept.resolve(s.x, x_end, std::vector<double>(s.x.size() / 3, 1.0), fixed, {earlier}, s.ox, CollisionParams{});
+  const auto reused = vertex_pairs(kept.proximities(s.x, s.v, fixed, s.ox, s.ov, band, 2));
+
+  int near = 0;
+  for (std::size_t i = 0; i < ball.positions.size(); ++i) {
+    const Vec3& p = ball.positions[i];
+    double best = band;
+    for (const auto& f : s.faces)
+      best = std::min(best, point_triangle_distance(p, s.x.segment<3>(3 * f[0]), s.x.segment<3>(3 * f[1]), s.x.segment<3>(3 * f[2])));
+    const int vi = static_cast<int>(i);
+    if (best >= band) {
+      EXPECT_EQ(refit.count(vi), 0u) << i;
+      EXPECT_EQ(reused.count(vi), 0u) << i;
+      continue;
+    }
+    ++near;
+    for (const auto* found : {&refit, &reused}) {
+      ASSERT_EQ(found->count(vi), 1u) << i;
+      const ProximityPair& pair = found->at(vi);
+      Vec3 sep = -p;
+      for (std::size_t j = 0; j < 3; ++j) sep += pair.weights[j] * s.x.segment<3>(3 * pair.nodes[j]);
+      EXPECT_NEAR(sep.norm(), best, 1e-12) << i;
+    }
+  }
+  EXPECT_GT(near, 50);  // the cap covers a good part of the ball within the band
+}
 
 TEST(ObstaclePlanes, NearestPointMatchesBruteForce) {
   const MeshSource ball = make_icosphere(0.1, 2);
