@@ -94,6 +94,15 @@ void Collider::set_cloth(const std::vector<std::array<int32_t, 3>>& cloth_faces,
   cloth_edge_tree_ = RefitBvh();
 }
 
+std::vector<const Bvh*> Collider::obstacle_face_trees(const std::vector<std::vector<Vec3>>& obstacle_x, int threads) {
+  std::vector<const Bvh*> trees;
+  for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+    obstacle_trees_[o].hold(obstacles_[o].faces, obstacle_edges_[o], obstacle_x[o], threads);
+    trees.push_back(&obstacle_trees_[o].faces());
+  }
+  return trees;
+}
+
 CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd& x_end, const std::vector<double>& mass,
                                  const std::vector<char>& fixed, const std::vector<std::vector<Vec3>>& obstacle_start,
                                  const std::vector<std::vector<Vec3>>& obstacle_end, const CollisionParams& params) {

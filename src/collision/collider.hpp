@@ -73,6 +73,12 @@ class Collider {
                                          const std::vector<std::vector<Vec3>>& obstacle_x,
                                          const std::vector<std::vector<Vec3>>& obstacle_v, double band, int threads);
 
+  // Each obstacle's face hierarchy, its boxes holding the obstacle's faces at `obstacle_x`: kept
+  // from the last detection when that ended there (the frame's start, after its last step), for
+  // the searches between frames (obstacle-proximity sizing, untangling). Valid until the next
+  // detection.
+  std::vector<const Bvh*> obstacle_face_trees(const std::vector<std::vector<Vec3>>& obstacle_x, int threads);
+
  private:
   // Subtrees a cloth hierarchy is split into for a parallel descent with another hierarchy:
   // fixed, so that the pairs found, and their order, do not depend on the thread count.

@@ -1,22 +1,32 @@
 // Nearest obstacle points of cloth nodes (for obstacle-proximity sizing, Narain et al. 2012).
 #include "collision/obstacle_planes.hpp"
 
+#include <memory>
+
 #include "collision/distance.hpp"
 #include "core/bvh.hpp"
 
 namespace vdc {
 
 std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
-                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, int threads) {
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, int threads,
+                                                   const std::vector<const Bvh*>& obstacle_trees) {
   std::vector<ObstaclePlane> planes(points.size());
   std::vector<double> best(points.size(), radius);
-  std::vector<Bvh> trees;
-  for (std::size_t o = 0; o < obstacles.size(); ++o)
-    trees.emplace_back(leaf_boxes(obstacles[o].faces.size(), threads, [&](std::size_t f) {
+  std::vector<std::unique_ptr<Bvh>> built;
+  std::vector<const Bvh*> trees;
+  for (std::size_t o = 0; o < obstacles.size(); ++o) {
+    if (o < obstacle_trees.size() && obstacle_trees[o] != nullptr) {
+      trees.push_back(obstacle_trees[o]);
+      continue;
+    }
+    built.push_back(std::make_unique<Bvh>(leaf_boxes(obstacles[o].faces.size(), threads, [&](std::size_t f) {
       Aabb box;
       for (int32_t v : obstacles[o].faces[f]) box.grow(obstacle_x[o][static_cast<std::size_t>(v)]);
       return box;
-    }));
+    })));
+    trees.push_back(built.back().get());
+  }
   const auto n = static_cast<int64_t>(points.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
   for (int64_t node = 0; node < n; ++node) {
@@ -26,7 +36,7 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
       const auto& ox = obstacle_x[o];
       const auto& faces = obstacles[o].faces;
       auto corner = [&](std::size_t f, int k) -> const Vec3& { return ox[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(k)])]; };
-      trees[o].nearest(p, best[i], [&](int32_t fi) {
+      trees[o]->nearest(p, best[i], [&](int32_t fi) {
         const auto f = static_cast<std::size_t>(fi);
         const Vec3 w = closest_triangle_weights(p, corner(f, 0), corner(f, 1), corner(f, 2));
         const Vec3 q = w[0] * corner(f, 0) + w[1] * corner(f, 1) + w[2] * corner(f, 2);

@@ -10,7 +10,10 @@
 
 namespace vdc {
 
+// `obstacle_trees` may give, per obstacle, a hierarchy whose boxes hold its faces at obstacle_x
+// (the collider's, say); the others are built here.
 std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
-                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, int threads);
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, int threads,
+                                                   const std::vector<const Bvh*>& obstacle_trees = {});
 
 }  // namespace vdc

@@ -2,6 +2,8 @@
 // cloth crossings; obstacle crossings are pushed to the obstacle's outside.
 #include "collision/untangle.hpp"
 
+#include <memory>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -44,8 +46,23 @@ std::optional<Crossing> edge_through_face(std::array<int32_t, 2> edge, std::arra
 class Untangler {
  public:
   Untangler(const std::vector<std::array<int32_t, 3>>& faces, Eigen::VectorXd& x, const std::vector<char>& fixed,
-            const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x, const UntangleParams& params)
-      : faces_(faces), x_(x), fixed_(fixed), obstacles_(obstacles), obstacle_x_(obstacle_x), params_(params) {}
+            const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x,
+            const std::vector<const Bvh*>& obstacle_trees, const UntangleParams& params)
+      : faces_(faces), x_(x), fixed_(fixed), obstacles_(obstacles), obstacle_x_(obstacle_x), params_(params) {
+    // The obstacles do not move while the cloth is untangled: one hierarchy each for all passes.
+    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
+      if (o < obstacle_trees.size() && obstacle_trees[o] != nullptr) {
+        obstacle_tree_.push_back(obstacle_trees[o]);
+        continue;
+      }
+      const auto& ox = obstacle_x_[o];
+      std::vector<Aabb> boxes(obstacles_[o].faces.size());
+      for (std::size_t f = 0; f < boxes.size(); ++f)
+        for (int32_t v : obstacles_[o].faces[f]) boxes[f].grow(ox[static_cast<std::size_t>(v)]);
+      built_.push_back(std::make_unique<Bvh>(boxes));
+      obstacle_tree_.push_back(built_.back().get());
+    }
+  }
 
   UntangleReport run() {
     UntangleReport report;
@@ -101,11 +118,7 @@ class Untangler {
     });
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
       const auto& ox = obstacle_x_[o];
-      std::vector<Aabb> oboxes(obstacles_[o].faces.size());
-      for (std::size_t f = 0; f < oboxes.size(); ++f)
-        for (int32_t v : obstacles_[o].faces[f]) oboxes[f].grow(ox[static_cast<std::size_t>(v)]);
-      const Bvh otree(oboxes);
-      tree.pairs_with(otree, [&](int32_t fc, int32_t fo) {
+      tree.pairs_with(*obstacle_tree_[o], [&](int32_t fc, int32_t fo) {
         if (obstacle_push(faces_[static_cast<std::size_t>(fc)], obstacles_[o].faces[static_cast<std::size_t>(fo)], ox)) ++obstacle_pairs;
       });
     }
@@ -211,6 +224,8 @@ class Untangler {
   const std::vector<char>& fixed_;
   const std::vector<CollisionMesh>& obstacles_;
   const std::vector<std::vector<Vec3>>& obstacle_x_;
+  std::vector<const Bvh*> obstacle_tree_;     // per obstacle: boxes holding its faces
+  std::vector<std::unique_ptr<Bvh>> built_;  // the ones not given
   const UntangleParams& params_;
   std::vector<Vec3> gradient_, push_;
 };
@@ -219,8 +234,8 @@ class Untangler {
 
 UntangleReport untangle(const std::vector<std::array<int32_t, 3>>& cloth_faces, Eigen::VectorXd& x, const std::vector<char>& fixed,
                         const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x,
-                        const UntangleParams& params) {
-  return Untangler(cloth_faces, x, fixed, obstacles, obstacle_x, params).run();
+                        const UntangleParams& params, const std::vector<const Bvh*>& obstacle_trees) {
+  return Untangler(cloth_faces, x, fixed, obstacles, obstacle_x, obstacle_trees, params).run();
 }
 
 }  // namespace vdc

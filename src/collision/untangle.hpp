@@ -35,8 +35,10 @@ struct UntangleReport {
 
 // Moves x (3n, cloth nodes) so that no two cloth faces that share no node intersect and no cloth
 // face intersects an obstacle face. `fixed` nodes (handles) stay.
+// `obstacle_trees` may give, per obstacle, a hierarchy whose boxes hold its faces at obstacle_x
+// (the collider's, say); the others are built here, once for all passes.
 UntangleReport untangle(const std::vector<std::array<int32_t, 3>>& cloth_faces, Eigen::VectorXd& x, const std::vector<char>& fixed,
                         const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x,
-                        const UntangleParams& params);
+                        const UntangleParams& params, const std::vector<const Bvh*>& obstacle_trees = {});
 
 }  // namespace vdc

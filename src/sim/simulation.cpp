@@ -119,6 +119,10 @@ void Simulation::remesh_garments(FrameStats& stats) {
   std::vector<Mesh> started_with;
   for (const auto& g : scene_.garments) started_with.push_back(g.mesh);
   const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
+  // The collider's hierarchies, unless a restart will drop them (a resumed run has none yet, and
+  // must find what an uninterrupted one finds).
+  const std::vector<const Bvh*> obstacle_trees =
+      restart_pending_ ? std::vector<const Bvh*>{} : collider_->obstacle_face_trees(obstacle_x, options_.threads);
   // For the proximity criterion the other garments are obstacles too: a layer's chords must not
   // sag through the layer beside it any more than through the body.
   std::vector<CollisionMesh> garment_meshes;
@@ -138,7 +142,8 @@ void Simulation::remesh_garments(FrameStats& stats) {
         near_meshes.push_back(garment_meshes[other]);
         near_x.push_back(garment_x[other]);
       }
-    const std::vector<ObstaclePlane> planes = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, options_.threads);
+    const std::vector<ObstaclePlane> planes =
+        nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, options_.threads, obstacle_trees);
     if (options_.mode == SimMode::View) {
       auto tv = std::chrono::steady_clock::now();
       ViewSizing view(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
@@ -203,7 +208,8 @@ UntangleReport Simulation::untangle_cloth(FrameStats& stats) {
   params.thickness = scene_.collision.thickness;
   params.step = scene_.collision.thickness;
   params.max_iterations = scene_.collision.untangle_iterations;
-  const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacle_meshes_, obstacle_x, params);
+  const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacle_meshes_, obstacle_x, params,
+                                    collider_->obstacle_face_trees(obstacle_x, options_.threads));
   stats.untangle_moves += r.moves;
   // Routine untangling (cloth-obstacle pairs cleared in one pass: nodes a split put on a chord
   // just inside a body) is counted in stats.csv's untangle_moves; the log gets what is not.
