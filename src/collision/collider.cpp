@@ -94,6 +94,24 @@ void Collider::set_cloth(const std::vector<std::array<int32_t, 3>>& cloth_faces,
   cloth_edge_tree_ = RefitBvh();
 }
 
+std::vector<const Bvh*> face_trees_at(const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x,
+                                      const std::vector<const Bvh*>& given, int threads, std::vector<std::unique_ptr<Bvh>>& built) {
+  std::vector<const Bvh*> trees;
+  for (std::size_t o = 0; o < obstacles.size(); ++o) {
+    if (o < given.size() && given[o] != nullptr) {
+      trees.push_back(given[o]);
+      continue;
+    }
+    built.push_back(std::make_unique<Bvh>(leaf_boxes(obstacles[o].faces.size(), threads, [&](std::size_t f) {
+      Aabb box;
+      for (int32_t v : obstacles[o].faces[f]) box.grow(obstacle_x[o][static_cast<std::size_t>(v)]);
+      return box;
+    })));
+    trees.push_back(built.back().get());
+  }
+  return trees;
+}
+
 std::vector<const Bvh*> Collider::obstacle_face_trees(const std::vector<std::vector<Vec3>>& obstacle_x, int threads) {
   std::vector<const Bvh*> trees;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {

@@ -50,6 +50,11 @@ struct ObstacleAdjacency {
   FacesAround vertex, edge;
 };
 
+// Each obstacle's face hierarchy at positions obstacle_x: given[o] where `given` has one (boxes
+// holding the faces there, the collider's say), else one built into `built`, which owns it.
+std::vector<const Bvh*> face_trees_at(const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x,
+                                      const std::vector<const Bvh*>& given, int threads, std::vector<std::unique_ptr<Bvh>>& built);
+
 class Collider {
  public:
   // Cloth faces (global node ids) and obstacle meshes (faces into their own vertex arrays).

@@ -14,19 +14,7 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
   std::vector<ObstaclePlane> planes(points.size());
   std::vector<double> best(points.size(), radius);
   std::vector<std::unique_ptr<Bvh>> built;
-  std::vector<const Bvh*> trees;
-  for (std::size_t o = 0; o < obstacles.size(); ++o) {
-    if (o < obstacle_trees.size() && obstacle_trees[o] != nullptr) {
-      trees.push_back(obstacle_trees[o]);
-      continue;
-    }
-    built.push_back(std::make_unique<Bvh>(leaf_boxes(obstacles[o].faces.size(), threads, [&](std::size_t f) {
-      Aabb box;
-      for (int32_t v : obstacles[o].faces[f]) box.grow(obstacle_x[o][static_cast<std::size_t>(v)]);
-      return box;
-    })));
-    trees.push_back(built.back().get());
-  }
+  const std::vector<const Bvh*> trees = face_trees_at(obstacles, obstacle_x, obstacle_trees, threads, built);
   const auto n = static_cast<int64_t>(points.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
   for (int64_t node = 0; node < n; ++node) {

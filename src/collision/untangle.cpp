@@ -50,18 +50,7 @@ class Untangler {
             const std::vector<const Bvh*>& obstacle_trees, const UntangleParams& params)
       : faces_(faces), x_(x), fixed_(fixed), obstacles_(obstacles), obstacle_x_(obstacle_x), params_(params) {
     // The obstacles do not move while the cloth is untangled: one hierarchy each for all passes.
-    for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-      if (o < obstacle_trees.size() && obstacle_trees[o] != nullptr) {
-        obstacle_tree_.push_back(obstacle_trees[o]);
-        continue;
-      }
-      const auto& ox = obstacle_x_[o];
-      std::vector<Aabb> boxes(obstacles_[o].faces.size());
-      for (std::size_t f = 0; f < boxes.size(); ++f)
-        for (int32_t v : obstacles_[o].faces[f]) boxes[f].grow(ox[static_cast<std::size_t>(v)]);
-      built_.push_back(std::make_unique<Bvh>(boxes));
-      obstacle_tree_.push_back(built_.back().get());
-    }
+    obstacle_tree_ = face_trees_at(obstacles_, obstacle_x_, obstacle_trees, 1, built_);
   }
 
   UntangleReport run() {
