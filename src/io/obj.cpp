@@ -2,12 +2,12 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/text_file.hpp"
 
 namespace vdc {
 
@@ -102,16 +102,17 @@ Mesh read_obj(const std::string& path, bool require_uv) {
 
 bool write_obj(const Mesh& mesh, const std::string& path) {
   MeshSource src = mesh_source(mesh);
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f) return false;
-  std::fprintf(f, "# vdcloth mesh: v world position, vt material position (m)\n");
-  for (const Vec3& p : src.positions) std::fprintf(f, "v %.17g %.17g %.17g\n", p.x(), p.y(), p.z());
-  for (const Vec2& u : src.uvs) std::fprintf(f, "vt %.17g %.17g\n", u.x(), u.y());
-  for (const auto& face : src.faces)
-    std::fprintf(f, "f %d/%d %d/%d %d/%d\n", face[0].node + 1, face[0].uv + 1, face[1].node + 1, face[1].uv + 1,
-                 face[2].node + 1, face[2].uv + 1);
-  bool ok = std::ferror(f) == 0;
-  return std::fclose(f) == 0 && ok;
+  TextFile f(path);
+  if (!f.ok()) return false;
+  f.text("# vdcloth mesh: v world position, vt material position (m)\n");
+  for (const Vec3& p : src.positions) f.text("v ").number(p.x()).text(" ").number(p.y()).text(" ").number(p.z()).text("\n");
+  for (const Vec2& u : src.uvs) f.text("vt ").number(u.x()).text(" ").number(u.y()).text("\n");
+  for (const auto& face : src.faces) {
+    f.text("f");
+    for (const auto& corner : face) f.text(" ").integer(corner.node + 1).text("/").integer(corner.uv + 1);
+    f.text("\n");
+  }
+  return f.close();
 }
 
 }  // namespace vdc

@@ -1,0 +1,66 @@
+// Buffered text output with std::to_chars.
+#include "io/text_file.hpp"
+
+#include <charconv>
+#include <cstring>
+
+namespace vdc {
+
+namespace {
+constexpr std::size_t kBufferBytes = 1 << 16;
+constexpr std::size_t kLongestNumber = 32;  // a double's shortest form, or an int64, fits
+}  // namespace
+
+TextFile::TextFile(const std::string& path) : file_(std::fopen(path.c_str(), "w")), buffer_(kBufferBytes) {}
+
+TextFile::~TextFile() {
+  if (file_) std::fclose(file_);
+}
+
+void TextFile::flush() {
+  if (file_ && used_ > 0 && std::fwrite(buffer_.data(), 1, used_, file_) != used_) failed_ = true;
+  used_ = 0;
+}
+
+void TextFile::make_room(std::size_t n) {
+  if (used_ + n <= buffer_.size()) return;
+  flush();
+  if (n > buffer_.size()) buffer_.resize(n);
+}
+
+TextFile& TextFile::text(std::string_view s) {
+  make_room(s.size());
+  std::memcpy(buffer_.data() + used_, s.data(), s.size());
+  used_ += s.size();
+  return *this;
+}
+
+TextFile& TextFile::number(double value) {
+  make_room(kLongestNumber);
+  used_ = static_cast<std::size_t>(std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value).ptr - buffer_.data());
+  return *this;
+}
+
+TextFile& TextFile::number(double value, int precision) {
+  make_room(kLongestNumber);
+  used_ = static_cast<std::size_t>(
+      std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value, std::chars_format::general, precision).ptr - buffer_.data());
+  return *this;
+}
+
+TextFile& TextFile::integer(int64_t value) {
+  make_room(kLongestNumber);
+  used_ = static_cast<std::size_t>(std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value).ptr - buffer_.data());
+  return *this;
+}
+
+bool TextFile::close() {
+  if (!file_) return false;
+  flush();
+  const bool ok = !failed_ && std::ferror(file_) == 0;
+  const bool closed = std::fclose(file_) == 0;
+  file_ = nullptr;
+  return ok && closed;
+}
+
+}  // namespace vdc
