@@ -2,10 +2,9 @@
 // cloth crossings; obstacle crossings are pushed to the obstacle's outside.
 #include "collision/untangle.hpp"
 
-#include <memory>
-
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "collision/intersection.hpp"

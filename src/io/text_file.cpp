@@ -8,7 +8,7 @@ namespace vdc {
 
 namespace {
 constexpr std::size_t kBufferBytes = 1 << 16;
-constexpr std::size_t kLongestNumber = 32;  // a double's shortest form, or an int64, fits
+constexpr std::size_t kLongestNumber = 32;  // a double (shortest, or %.17g at most), or an int64, fits
 }  // namespace
 
 TextFile::TextFile(const std::string& path) : file_(std::fopen(path.c_str(), "w")), buffer_(kBufferBytes) {}
@@ -35,24 +35,18 @@ TextFile& TextFile::text(std::string_view s) {
   return *this;
 }
 
-TextFile& TextFile::number(double value) {
+template <class... Args>
+TextFile& TextFile::append(Args... args) {
   make_room(kLongestNumber);
-  used_ = static_cast<std::size_t>(std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value).ptr - buffer_.data());
+  used_ = static_cast<std::size_t>(std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), args...).ptr - buffer_.data());
   return *this;
 }
 
-TextFile& TextFile::number(double value, int precision) {
-  make_room(kLongestNumber);
-  used_ = static_cast<std::size_t>(
-      std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value, std::chars_format::general, precision).ptr - buffer_.data());
-  return *this;
-}
+TextFile& TextFile::number(double value) { return append(value); }
 
-TextFile& TextFile::integer(int64_t value) {
-  make_room(kLongestNumber);
-  used_ = static_cast<std::size_t>(std::to_chars(buffer_.data() + used_, buffer_.data() + buffer_.size(), value).ptr - buffer_.data());
-  return *this;
-}
+TextFile& TextFile::number(double value, int precision) { return append(value, std::chars_format::general, precision); }
+
+TextFile& TextFile::integer(int64_t value) { return append(value); }
 
 bool TextFile::close() {
   if (!file_) return false;
