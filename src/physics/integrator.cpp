@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "physics/block_diagonal_solver.hpp"
+
 namespace vdc {
 
 namespace {
@@ -13,7 +15,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 ImplicitIntegrator::ImplicitIntegrator(const ClothModel& model, LinearSolverKind kind, const LinearSolverParams& params)
-    : assembler_(model), solver_(make_linear_solver(kind, params)) {
+    : assembler_(model), solver_(std::make_unique<BlockDiagonalSolver>(kind, params)) {
   solver_->analyze(assembler_.matrix());
   dv_.setZero(3 * static_cast<int64_t>(model.num_nodes));
 }

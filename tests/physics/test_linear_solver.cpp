@@ -7,31 +7,10 @@
 #include <vector>
 
 #include "physics/linear_solver.hpp"
+#include "grid_system.hpp"
 
 namespace vdc {
 namespace {
-
-// A grid graph's Laplacian with 3 unknowns a node, shifted to be positive definite: the pattern
-// of a sheet's system.
-SparseMatrix grid_system(int side) {
-  std::vector<Eigen::Triplet<double>> t;
-  auto node = [&](int i, int j) { return i * side + j; };
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j)
-      for (int c = 0; c < 3; ++c) {
-        const int r = 3 * node(i, j) + c;
-        t.emplace_back(r, r, 6.1 + 0.01 * c);  // 6 neighbours: diagonally dominant
-        for (const auto& [di, dj] : {std::pair{1, 0}, {0, 1}, {1, 1}}) {
-          if (i + di >= side || j + dj >= side) continue;
-          const int s = 3 * node(i + di, j + dj) + c;
-          t.emplace_back(r, s, -1.0);
-          t.emplace_back(s, r, -1.0);
-        }
-      }
-  SparseMatrix a(3 * side * side, 3 * side * side);
-  a.setFromTriplets(t.begin(), t.end());
-  return a;
-}
 
 Eigen::VectorXd solve_once(const SparseMatrix& a, const Eigen::VectorXd& b) {
   const auto solver = make_linear_solver(LinearSolverKind::Cholmod);

@@ -1,0 +1,104 @@
+#include "physics/block_diagonal_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <omp.h>
+
+namespace vdc {
+
+std::vector<std::pair<Eigen::Index, Eigen::Index>> independent_ranges(const SparseMatrix& a, Eigen::Index min_size) {
+  // A range can end after column j when no column up to j reaches a row below j: with both
+  // triangles stored, nothing then couples the columns before the cut to those after it.
+  std::vector<std::pair<Eigen::Index, Eigen::Index>> ranges;
+  Eigen::Index start = 0, reach = -1;
+  for (Eigen::Index j = 0; j < a.outerSize(); ++j) {
+    reach = std::max(reach, j);
+    for (SparseMatrix::InnerIterator it(a, j); it; ++it) reach = std::max(reach, it.row());
+    if (reach == j) {
+      if (!ranges.empty() && ranges.back().second < min_size) ranges.back().second = j + 1 - ranges.back().first;
+      else ranges.emplace_back(start, j + 1 - start);
+      start = j + 1;
+    }
+  }
+  if (ranges.size() > 1 && ranges.back().second < min_size) {
+    const Eigen::Index last = ranges.back().second;
+    ranges.pop_back();
+    ranges.back().second += last;
+  }
+  return ranges;
+}
+
+BlockDiagonalSolver::BlockDiagonalSolver(LinearSolverKind kind, const LinearSolverParams& params)
+    : kind_(kind), params_(params) {}
+
+void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
+  // (An uncompressed matrix, which only tests build, is solved whole.)
+  const auto ranges = a.isCompressed() ? independent_ranges(a, kMinBlockUnknowns)
+                                       : std::vector<std::pair<Eigen::Index, Eigen::Index>>{{0, a.rows()}};
+  blocks_.clear();
+  blocks_.resize(ranges.size());
+  for (std::size_t k = 0; k < ranges.size(); ++k) {
+    blocks_[k].start = ranges[k].first;
+    blocks_[k].size = ranges[k].second;
+  }
+  std::stable_sort(blocks_.begin(), blocks_.end(), [](const Block& p, const Block& q) { return p.size > q.size; });
+  LinearSolverParams inner = params_;
+  if (blocks_.size() > 1) inner.threads = 1;  // the blocks are the parallelism
+  for (Block& block : blocks_) {
+    block.solver = make_linear_solver(kind_, inner);
+    if (blocks_.size() > 1) {
+      copy_block(a, block);
+      block.solver->analyze(block.a);
+    } else {
+      block.solver->analyze(a);
+    }
+  }
+}
+
+void BlockDiagonalSolver::copy_block(const SparseMatrix& a, Block& block) const {
+  const Eigen::Index s = block.start, n = block.size;
+  const auto* outer = a.outerIndexPtr();
+  const auto nnz = outer[s + n] - outer[s];
+  if (block.a.rows() != n || block.a.nonZeros() != nnz) {
+    block.a.resize(n, n);
+    block.a.resizeNonZeros(nnz);
+    auto* bo = block.a.outerIndexPtr();
+    auto* bi = block.a.innerIndexPtr();
+    for (Eigen::Index j = 0; j <= n; ++j) bo[j] = outer[s + j] - outer[s];
+    for (auto k = outer[s]; k < outer[s + n]; ++k) bi[k - outer[s]] = a.innerIndexPtr()[k] - static_cast<int>(s);
+  }
+  std::copy(a.valuePtr() + outer[s], a.valuePtr() + outer[s + n], block.a.valuePtr());
+}
+
+SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (blocks_.size() == 1) return blocks_.front().solver->solve(a, b, x);
+  // One active level: CHOLMOD's and BLAS's own teams inside each block's solve run on the
+  // block's thread (as in linear_solver.cpp's cholmod_serial).
+  omp_set_max_active_levels(1);
+  const auto n = static_cast<int>(blocks_.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
+  for (int k = 0; k < n; ++k) {
+    Block& block = blocks_[static_cast<std::size_t>(k)];
+    copy_block(a, block);
+    block.b = b.segment(block.start, block.size);
+    block.x = x.segment(block.start, block.size);
+    block.report = block.solver->solve(block.a, block.b, block.x);
+  }
+  SolveReport r;
+  r.ok = true;
+  double residual2 = 0;
+  for (const Block& block : blocks_) {
+    r.ok = r.ok && block.report.ok;
+    r.iterations = std::max(r.iterations, block.report.iterations);
+    r.factorizations = std::max(r.factorizations, block.report.factorizations);
+    const double rb = block.report.residual * block.b.norm();
+    residual2 += rb * rb;
+    x.segment(block.start, block.size) = block.x;
+  }
+  const double nb = b.norm();
+  r.residual = nb > 0 ? std::sqrt(residual2) / nb : std::sqrt(residual2);
+  return r;
+}
+
+}  // namespace vdc
