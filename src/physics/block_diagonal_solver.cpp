@@ -33,7 +33,7 @@ BlockDiagonalSolver::BlockDiagonalSolver(LinearSolverKind kind, const LinearSolv
     : kind_(kind), params_(params) {}
 
 void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
-  // (An uncompressed matrix, which only tests build, is solved whole.)
+  // The blocks are copied from the compressed arrays; an uncompressed matrix is solved whole.
   const auto ranges = a.isCompressed() ? independent_ranges(a, kMinBlockUnknowns)
                                        : std::vector<std::pair<Eigen::Index, Eigen::Index>>{{0, a.rows()}};
   blocks_.clear();
@@ -48,7 +48,8 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
   for (Block& block : blocks_) {
     block.solver = make_linear_solver(kind_, inner);
     if (blocks_.size() > 1) {
-      copy_block(a, block);
+      copy_pattern(a, block);
+      copy_values(a, block);
       block.solver->analyze(block.a);
     } else {
       block.solver->analyze(a);
@@ -56,19 +57,20 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
   }
 }
 
-void BlockDiagonalSolver::copy_block(const SparseMatrix& a, Block& block) const {
+void BlockDiagonalSolver::copy_pattern(const SparseMatrix& a, Block& block) {
   const Eigen::Index s = block.start, n = block.size;
   const auto* outer = a.outerIndexPtr();
-  const auto nnz = outer[s + n] - outer[s];
-  if (block.a.rows() != n || block.a.nonZeros() != nnz) {
-    block.a.resize(n, n);
-    block.a.resizeNonZeros(nnz);
-    auto* bo = block.a.outerIndexPtr();
-    auto* bi = block.a.innerIndexPtr();
-    for (Eigen::Index j = 0; j <= n; ++j) bo[j] = outer[s + j] - outer[s];
-    for (auto k = outer[s]; k < outer[s + n]; ++k) bi[k - outer[s]] = a.innerIndexPtr()[k] - static_cast<int>(s);
-  }
-  std::copy(a.valuePtr() + outer[s], a.valuePtr() + outer[s + n], block.a.valuePtr());
+  block.a.resize(n, n);
+  block.a.resizeNonZeros(outer[s + n] - outer[s]);
+  auto* block_outer = block.a.outerIndexPtr();
+  auto* block_inner = block.a.innerIndexPtr();
+  for (Eigen::Index j = 0; j <= n; ++j) block_outer[j] = outer[s + j] - outer[s];
+  for (auto k = outer[s]; k < outer[s + n]; ++k) block_inner[k - outer[s]] = a.innerIndexPtr()[k] - static_cast<int>(s);
+}
+
+void BlockDiagonalSolver::copy_values(const SparseMatrix& a, Block& block) {
+  const auto* outer = a.outerIndexPtr();
+  std::copy(a.valuePtr() + outer[block.start], a.valuePtr() + outer[block.start + block.size], block.a.valuePtr());
 }
 
 SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
@@ -80,7 +82,7 @@ SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::Vecto
 #pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
   for (int k = 0; k < n; ++k) {
     Block& block = blocks_[static_cast<std::size_t>(k)];
-    copy_block(a, block);
+    copy_values(a, block);
     block.b = b.segment(block.start, block.size);
     block.x = x.segment(block.start, block.size);
     block.report = block.solver->solve(block.a, block.b, block.x);

@@ -39,7 +39,9 @@ class BlockDiagonalSolver final : public LinearSolver {
     Eigen::VectorXd b, x;
     SolveReport report;
   };
-  void copy_block(const SparseMatrix& a, Block& block) const;
+  // The block's pattern (at analysis) and its values (at every solve), taken from `a`'s columns.
+  static void copy_pattern(const SparseMatrix& a, Block& block);
+  static void copy_values(const SparseMatrix& a, Block& block);
 
   LinearSolverKind kind_;
   LinearSolverParams params_;
