@@ -1,7 +1,9 @@
 #include "sim/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -133,32 +135,30 @@ void Simulation::remesh_garments(FrameStats& stats) {
     for (NodeId n : g.mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
     garment_x.push_back(std::move(x));
   }
-  for (std::size_t gi = 0; gi < scene_.garments.size(); ++gi) {
-    auto& g = scene_.garments[gi];
+  const std::size_t count = scene_.garments.size();
+  std::vector<std::vector<ObstaclePlane>> planes(count);
+  std::vector<std::unique_ptr<ViewSizing>> views(count);
+  for (std::size_t gi = 0; gi < count; ++gi) {
+    const auto& g = scene_.garments[gi];
     std::vector<CollisionMesh> near_meshes = obstacle_meshes_;
     std::vector<std::vector<Vec3>> near_x = obstacle_x;
-    for (std::size_t other = 0; other < scene_.garments.size(); ++other)
+    for (std::size_t other = 0; other < count; ++other)
       if (other != gi) {
         near_meshes.push_back(garment_meshes[other]);
         near_x.push_back(garment_x[other]);
       }
-    const std::vector<ObstaclePlane> planes =
-        nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, options_.threads, obstacle_trees);
+    planes[gi] = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, options_.threads, obstacle_trees);
     if (options_.mode == SimMode::View) {
       auto tv = std::chrono::steady_clock::now();
-      ViewSizing view(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
-      view.evaluate(g.mesh);
-      auto& factor = g.mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
-      for (FaceId f : g.mesh.faces()) factor[f] = view.factors()[static_cast<std::size_t>(f.idx)];
-      stats.visible_faces += view.counts().visible;
-      stats.back_facing_faces += view.counts().back_facing;
-      stats.out_of_frame_faces += view.counts().out_of_frame;
+      views[gi] = std::make_unique<ViewSizing>(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
+      views[gi]->evaluate(g.mesh);
+      stats.visible_faces += views[gi]->counts().visible;
+      stats.back_facing_faces += views[gi]->counts().back_facing;
+      stats.out_of_frame_faces += views[gi]->counts().out_of_frame;
       stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
-      compute_sizing(g.mesh, scene_.remeshing, &view, planes);
-    } else {
-      compute_sizing(g.mesh, scene_.remeshing, nullptr, planes);
     }
-    RemeshStats r = remesh(g.mesh);
+  }
+  for (const RemeshStats& r : size_and_remesh(views, planes)) {
     stats.splits += r.splits;
     stats.flips += r.flips;
     stats.collapses += r.collapses;
@@ -169,6 +169,41 @@ void Simulation::remesh_garments(FrameStats& stats) {
   stats.remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const UntangleReport remeshed = untangle_cloth(stats);
   if (remeshed.remaining > 0 && changed) keep_fewer_crossings(std::move(started_with), remeshed.remaining, stats);
+}
+
+// Sizing (Narain et al. 2012, sec. 3) and remeshing touch one garment each, so a character's
+// garments go side by side, each on one thread, the largest first: the view run's garments are
+// too small for the loops inside them to use a second core well. Each garment's result does not
+// depend on which thread made it.
+std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
+                                                     const std::vector<std::vector<ObstaclePlane>>& planes) {
+  const std::size_t count = scene_.garments.size();
+  std::vector<std::size_t> largest_first(count);
+  for (std::size_t gi = 0; gi < count; ++gi) largest_first[gi] = gi;
+  std::stable_sort(largest_first.begin(), largest_first.end(), [&](std::size_t a, std::size_t b) {
+    return scene_.garments[a].mesh.num_faces() > scene_.garments[b].mesh.num_faces();
+  });
+  std::vector<RemeshStats> remeshed(count);
+  std::vector<std::exception_ptr> failed(count);
+  const int team = std::max(1, std::min<int>(options_.threads, static_cast<int>(count)));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team) if (team > 1)
+  for (int64_t k = 0; k < static_cast<int64_t>(count); ++k) {
+    const std::size_t gi = largest_first[static_cast<std::size_t>(k)];
+    try {
+      Mesh& mesh = scene_.garments[gi].mesh;
+      if (views[gi]) {
+        auto& factor = mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
+        for (FaceId f : mesh.faces()) factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
+      }
+      compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
+      remeshed[gi] = remesh(mesh);
+    } catch (...) {
+      failed[gi] = std::current_exception();
+    }
+  }
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
+  return remeshed;
 }
 
 // Coarsening can fold cloth through cloth in ways contour minimisation (Volino and Magnenat-

@@ -11,9 +11,13 @@
 #include "collision/collider.hpp"
 #include "collision/untangle.hpp"
 #include "physics/integrator.hpp"
+#include "remesh/remesher.hpp"
+#include "remesh/sizing.hpp"
 #include "scene/scene.hpp"
 
 namespace vdc {
+
+class ViewSizing;
 
 enum class SimMode { Fixed, Adaptive, View };
 
@@ -94,6 +98,8 @@ class Simulation {
  private:
   void rebuild();                       // elements, assembler and solver from the meshes
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
+  std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
+                                           const std::vector<std::vector<ObstaclePlane>>& planes);
   // Removes interpenetrations that exist at the current time (start-up, after remeshing).
   UntangleReport untangle_cloth(FrameStats& stats);
   // After a remesh whose crossings untangling could not all remove (remeshed_pairs left): goes on
