@@ -1,11 +1,10 @@
 #include "sim/ensemble.hpp"
 
 #include "core/error.hpp"
+#include "core/task_order.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include <exception>
-#include <numeric>
 
 namespace vdc {
 
@@ -39,41 +38,6 @@ void accumulate(FrameStats& t, const FrameStats& p) {
   t.energy.elastic += p.energy.elastic;
 }
 
-namespace {
-// Runs body(order[i]) for every i on `team` threads, each taking the next part in `order` as it
-// comes free, then rethrows the first exception thrown (in part order). A team of one runs
-// outside any OpenMP region: the parallel regions inside a part are then not nested, and
-// libgomp reuses its threads for them instead of starting new ones for each (a solo-dancer run
-// had started about 150 threads a frame).
-template <class F>
-void for_each_part(const std::vector<int>& order, int team, F&& body) {
-  const auto n = static_cast<int>(order.size());
-  std::vector<std::exception_ptr> errors(order.size());
-  auto run = [&](int i) {
-    const int k = order[static_cast<std::size_t>(i)];
-    try {
-      body(k);
-    } catch (...) {
-      errors[static_cast<std::size_t>(k)] = std::current_exception();
-    }
-  };
-  if (team <= 1) {
-    for (int i = 0; i < n; ++i) run(i);
-  } else {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
-    for (int i = 0; i < n; ++i) run(i);
-  }
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
-}
-
-std::vector<int> in_part_order(std::size_t n) {
-  std::vector<int> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  return order;
-}
-}  // namespace
-
 template <class Make>
 void Ensemble::make_parts(Scene scene, std::size_t expected_parts, const std::string& source, Make&& make) {
   std::vector<Scene> scenes = split_groups(std::move(scene));
@@ -88,7 +52,7 @@ void Ensemble::make_parts(Scene scene, std::size_t expected_parts, const std::st
   for (const Scene& s : scenes) labels.push_back(n > 1 ? s.garments.front().group + ": " : "");
   parts_.resize(scenes.size());
   part_seconds_.assign(scenes.size(), 0.0);
-  for_each_part(in_part_order(scenes.size()), team_, [&](int k) {
+  for_each_in_order(index_order(scenes.size()), team_, [&](int k) {
     const auto i = static_cast<std::size_t>(k);
     Simulation::Log part_log;
     if (log_)
@@ -125,11 +89,7 @@ FrameStats Ensemble::step_frame() {
   // Longest processing time first (Graham 1969): the parts that took longest last frame start
   // first, so that a costly part (a dancer in close-up) does not start last and leave the other
   // threads idle. Each part's result does not depend on when it runs.
-  std::vector<int> order = in_part_order(parts_.size());
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return part_seconds_[static_cast<std::size_t>(a)] > part_seconds_[static_cast<std::size_t>(b)];
-  });
-  for_each_part(order, team_, [&](int k) {
+  for_each_in_order(largest_first(part_seconds_), team_, [&](int k) {
     const auto i = static_cast<std::size_t>(k);
     const auto start = std::chrono::steady_clock::now();
     frames[i] = parts_[i]->step_frame();

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/task_order.hpp"
 #include "remesh/remesher.hpp"
 #include "remesh/sizing.hpp"
 #include "view/view_sizing.hpp"
@@ -178,31 +178,20 @@ void Simulation::remesh_garments(FrameStats& stats) {
 std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                                      const std::vector<std::vector<ObstaclePlane>>& planes) {
   const std::size_t count = scene_.garments.size();
-  std::vector<std::size_t> largest_first(count);
-  for (std::size_t gi = 0; gi < count; ++gi) largest_first[gi] = gi;
-  std::stable_sort(largest_first.begin(), largest_first.end(), [&](std::size_t a, std::size_t b) {
-    return scene_.garments[a].mesh.num_faces() > scene_.garments[b].mesh.num_faces();
-  });
+  std::vector<double> faces;
+  for (const auto& g : scene_.garments) faces.push_back(g.mesh.num_faces());
   std::vector<RemeshStats> remeshed(count);
-  std::vector<std::exception_ptr> failed(count);
   const int team = std::max(1, std::min<int>(options_.threads, static_cast<int>(count)));
-#pragma omp parallel for schedule(dynamic, 1) num_threads(team) if (team > 1)
-  for (int64_t k = 0; k < static_cast<int64_t>(count); ++k) {
-    const std::size_t gi = largest_first[static_cast<std::size_t>(k)];
-    try {
-      Mesh& mesh = scene_.garments[gi].mesh;
-      if (views[gi]) {
-        auto& factor = mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
-        for (FaceId f : mesh.faces()) factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
-      }
-      compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
-      remeshed[gi] = remesh(mesh);
-    } catch (...) {
-      failed[gi] = std::current_exception();
+  for_each_in_order(largest_first(faces), team, [&](int k) {
+    const auto gi = static_cast<std::size_t>(k);
+    Mesh& mesh = scene_.garments[gi].mesh;
+    if (views[gi]) {
+      auto& factor = mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
+      for (FaceId f : mesh.faces()) factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
     }
-  }
-  for (const auto& e : failed)
-    if (e) std::rethrow_exception(e);
+    compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
+    remeshed[gi] = remesh(mesh);
+  });
   return remeshed;
 }
 

@@ -44,8 +44,8 @@ TEST(Adaptive, SheetHangRemeshesEveryFrameAndConserves) {
 
 namespace fs = std::filesystem;
 
-// Three hanging sheets of unequal size in one part, a metre apart, watched by a camera that sees
-// the first from the front, the second edge-on and not the third.
+// Three hanging sheets of unequal size in one part, a metre apart in a row that a camera looks
+// down, so that each is at its own distance from it.
 std::string three_sheets_scene(const fs::path& dir) {
   fs::create_directories(dir);
   std::string garments;
