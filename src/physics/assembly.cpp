@@ -2,6 +2,8 @@
 #include "physics/assembly.hpp"
 
 #include <algorithm>
+#include <memory>
+#include <span>
 
 namespace vdc {
 
@@ -27,23 +29,41 @@ VecN<N> gather(const Eigen::VectorXd& v, const std::array<int32_t, N / 3>& nodes
 
 SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
   const int32_t n = model.num_nodes;
-  neighbours_.assign(static_cast<std::size_t>(n), {});
-  for (int32_t i = 0; i < n; ++i) neighbours_[static_cast<std::size_t>(i)].push_back(i);
+  // Each node's neighbours (itself and the nodes it shares an element with) in one flat array:
+  // counted, filled, then each node's run sorted, made unique and packed forward in place.
+  slot_start_.assign(static_cast<std::size_t>(n) + 1, 1);
+  slot_start_[0] = 0;
+  auto count = [&](const auto& nodes) {
+    for (int32_t a : nodes) slot_start_[static_cast<std::size_t>(a) + 1] += static_cast<int32_t>(nodes.size()) - 1;
+  };
+  for (const auto& f : model.face_nodes) count(f);
+  for (const auto& b : model.bend_nodes) count(b);
+  for (int32_t i = 0; i < n; ++i) slot_start_[static_cast<std::size_t>(i) + 1] += slot_start_[static_cast<std::size_t>(i)];
+  slot_node_.resize(static_cast<std::size_t>(slot_start_.back()));
+  std::vector<int32_t> next(slot_start_.begin(), slot_start_.end() - 1);
+  for (int32_t i = 0; i < n; ++i) slot_node_[static_cast<std::size_t>(next[static_cast<std::size_t>(i)]++)] = i;
   auto link = [&](const auto& nodes) {
     for (int32_t a : nodes)
       for (int32_t b : nodes)
-        if (a != b) neighbours_[static_cast<std::size_t>(a)].push_back(b);
+        if (a != b) slot_node_[static_cast<std::size_t>(next[static_cast<std::size_t>(a)]++)] = b;
   };
   for (const auto& f : model.face_nodes) link(f);
   for (const auto& b : model.bend_nodes) link(b);
-  slot_start_.assign(static_cast<std::size_t>(n) + 1, 0);
+  int32_t packed = 0;
   for (int32_t i = 0; i < n; ++i) {
-    auto& nb = neighbours_[static_cast<std::size_t>(i)];
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-    slot_start_[static_cast<std::size_t>(i) + 1] = slot_start_[static_cast<std::size_t>(i)] + static_cast<int32_t>(nb.size());
+    const auto begin = slot_node_.begin() + slot_start_[static_cast<std::size_t>(i)];
+    const auto end = slot_node_.begin() + slot_start_[static_cast<std::size_t>(i) + 1];
+    std::sort(begin, end);
+    const auto last = std::unique(begin, end);
+    const auto to = slot_node_.begin() + packed;
+    if (to != begin) std::copy(begin, last, to);  // packs forward: `to` is never after `begin`
+    slot_start_[static_cast<std::size_t>(i)] = packed;
+    packed += static_cast<int32_t>(last - begin);
   }
-  const int32_t slots = slot_start_.back();
+  slot_start_[static_cast<std::size_t>(n)] = packed;
+  slot_node_.resize(static_cast<std::size_t>(packed));
+  slot_node_.shrink_to_fit();
+  const int32_t slots = packed;
 
   // Matrix pattern: scalar column 3j+c holds rows 3i+r for each neighbour i of j.
   const int64_t dim = 3 * static_cast<int64_t>(n);
@@ -55,7 +75,7 @@ SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
   for (int32_t j = 0; j < n; ++j)
     for (int c = 0; c < 3; ++c) {
       outer[3 * j + c] = static_cast<int>(pos);
-      for (int32_t i : neighbours_[static_cast<std::size_t>(j)])
+      for (int32_t i : neighbours(j))
         for (int r = 0; r < 3; ++r) inner[pos++] = 3 * i + r;
     }
   outer[dim] = static_cast<int>(pos);
@@ -65,8 +85,10 @@ SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
   // Gather lists: which element blocks and vectors land in each slot and node.
   const auto nf = static_cast<int64_t>(model.face_nodes.size());
   const auto ne = static_cast<int64_t>(model.bend_nodes.size());
-  matrix_buffer_.assign(static_cast<std::size_t>(nf * kFaceMat + ne * kBendMat), 0.0);
-  rhs_buffer_.assign(static_cast<std::size_t>(nf * kFaceVec + ne * kBendVec), 0.0);
+  // Left uninitialised: assemble() writes every element's local matrix and vector in full, and its
+  // threads touch the pages first.
+  matrix_buffer_ = std::make_unique_for_overwrite<double[]>(static_cast<std::size_t>(nf * kFaceMat + ne * kBendMat));
+  rhs_buffer_ = std::make_unique_for_overwrite<double[]>(static_cast<std::size_t>(nf * kFaceVec + ne * kBendVec));
   // Each element block (a, b) lands in one slot, each element vector part in one node; the
   // lists are bucketed by slot and node in element order (a counting sort: stable and linear).
   slot_contrib_start_.assign(static_cast<std::size_t>(slots) + 1, 0);
@@ -77,6 +99,7 @@ SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
       visit(model.bend_nodes[static_cast<std::size_t>(e)], nf * kFaceMat + e * kBendMat, nf * kFaceVec + e * kBendVec, 12);
   };
   std::vector<int32_t> element_slots;  // slot of every block, in visiting order
+  element_slots.reserve(static_cast<std::size_t>(9 * nf + 16 * ne));
   for_each_element([&](const auto& nodes, int64_t, int64_t, int32_t) {
     for (int32_t a : nodes) {
       ++node_force_start_[static_cast<std::size_t>(a) + 1];
@@ -108,7 +131,7 @@ SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
 }
 
 int32_t SystemAssembler::slot_of(int32_t row_node, int32_t col_node) const {
-  const auto& nb = neighbours_[static_cast<std::size_t>(col_node)];
+  const std::span<const int32_t> nb = neighbours(col_node);
   auto it = std::lower_bound(nb.begin(), nb.end(), row_node);
   if (it == nb.end() || *it != row_node) return -1;
   return slot_start_[static_cast<std::size_t>(col_node)] + static_cast<int32_t>(it - nb.begin());
@@ -153,8 +176,8 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
           }
         }
       }
-      std::copy(local.data(), local.data() + kFaceMat, matrix_buffer_.data() + f * kFaceMat);
-      std::copy(rhs.data(), rhs.data() + kFaceVec, rhs_buffer_.data() + f * kFaceVec);
+      std::copy(local.data(), local.data() + kFaceMat, matrix_buffer_.get() + f * kFaceMat);
+      std::copy(rhs.data(), rhs.data() + kFaceVec, rhs_buffer_.get() + f * kFaceVec);
     }
 #pragma omp for schedule(static)
     for (int64_t e = 0; e < ne; ++e) {
@@ -164,18 +187,18 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
       VecN<12> vl = gather<12>(v, nodes);
       MatN<12> local = h2 * b.hessian;
       VecN<12> rhs = -h * b.gradient - h2 * (b.hessian * vl);
-      std::copy(local.data(), local.data() + kBendMat, matrix_buffer_.data() + nf * kFaceMat + e * kBendMat);
-      std::copy(rhs.data(), rhs.data() + kBendVec, rhs_buffer_.data() + nf * kFaceVec + e * kBendVec);
+      std::copy(local.data(), local.data() + kBendMat, matrix_buffer_.get() + nf * kFaceMat + e * kBendMat);
+      std::copy(rhs.data(), rhs.data() + kBendVec, rhs_buffer_.get() + nf * kFaceVec + e * kBendVec);
     }
 #pragma omp for schedule(static)
     for (int32_t j = 0; j < model_.num_nodes; ++j) {
-      const auto& nb = neighbours_[static_cast<std::size_t>(j)];
+      const std::span<const int32_t> nb = neighbours(j);
       for (std::size_t k = 0; k < nb.size(); ++k) {
         const int32_t s = slot_start_[static_cast<std::size_t>(j)] + static_cast<int32_t>(k);
         Mat3 block = Mat3::Zero();
         for (int32_t q = slot_contrib_start_[static_cast<std::size_t>(s)]; q < slot_contrib_start_[static_cast<std::size_t>(s) + 1]; ++q) {
           const Contribution& c = contributions_[static_cast<std::size_t>(q)];
-          block += Eigen::Map<const Mat3, 0, Eigen::OuterStride<>>(matrix_buffer_.data() + c.offset, Eigen::OuterStride<>(c.ld));
+          block += Eigen::Map<const Mat3, 0, Eigen::OuterStride<>>(matrix_buffer_.get() + c.offset, Eigen::OuterStride<>(c.ld));
         }
         if (nb[k] == j) block.diagonal().array() += model_.node_mass[static_cast<std::size_t>(j)] * (1.0 + h * p.damping);
         for (int c = 0; c < 3; ++c)
@@ -184,7 +207,7 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
       const double mass = model_.node_mass[static_cast<std::size_t>(j)];
       Vec3 rhs = h * mass * (p.gravity - p.damping * v.segment<3>(3 * j));
       for (int32_t q = node_force_start_[static_cast<std::size_t>(j)]; q < node_force_start_[static_cast<std::size_t>(j) + 1]; ++q)
-        rhs += Eigen::Map<const Vec3>(rhs_buffer_.data() + force_parts_[static_cast<std::size_t>(q)]);
+        rhs += Eigen::Map<const Vec3>(rhs_buffer_.get() + force_parts_[static_cast<std::size_t>(q)]);
       b_.segment<3>(3 * j) = rhs;
     }
   }
@@ -217,7 +240,7 @@ void SystemAssembler::constrain(const std::vector<VelocityConstraint>& constrain
   double* val = a_.valuePtr();
   for (const auto& con : constraints) {
     const int32_t c = con.node;
-    for (int32_t i : neighbours_[static_cast<std::size_t>(c)]) {
+    for (int32_t i : neighbours(c)) {
       for (int cc = 0; cc < 3; ++cc)
         for (int r = 0; r < 3; ++r) {
           int64_t below = value_index(i, c, r, cc);  // block (i, c)

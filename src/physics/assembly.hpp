@@ -4,6 +4,8 @@
 // are evaluated in parallel into their own buffers, then each matrix block and force gathers
 // its contributions, so no two threads write one place and the sum order never changes.
 #pragma once
+#include <memory>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -55,16 +57,20 @@ class SystemAssembler {
     int32_t ld;
   };
   int32_t slot_of(int32_t row_node, int32_t col_node) const;
+  // Node j's neighbours, sorted, j included: the rows of its column's blocks, one per slot.
+  std::span<const int32_t> neighbours(int32_t j) const {
+    return {slot_node_.data() + slot_start_[static_cast<std::size_t>(j)], slot_node_.data() + slot_start_[static_cast<std::size_t>(j) + 1]};
+  }
 
   const ClothModel& model_;
-  std::vector<std::vector<int32_t>> neighbours_;  // per node, sorted, itself included
   std::vector<int32_t> slot_start_;               // per node: first block slot of its column
+  std::vector<int32_t> slot_node_;                // per slot: the row node of its block
   std::vector<int32_t> slot_contrib_start_;       // per slot: range in contributions_
   std::vector<Contribution> contributions_;
   std::vector<int32_t> node_force_start_;         // per node: range in force_parts_
   std::vector<int64_t> force_parts_;              // offsets of local 3-vectors in rhs_buffer_
-  std::vector<double> matrix_buffer_;             // per element local matrices
-  std::vector<double> rhs_buffer_;                // per element local rhs
+  std::unique_ptr<double[]> matrix_buffer_;       // per element local matrices
+  std::unique_ptr<double[]> rhs_buffer_;          // per element local rhs
   SparseMatrix a_;
   Eigen::VectorXd b_;
   double elastic_energy_ = 0;
