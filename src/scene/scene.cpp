@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <stdexcept>
 
 #include "core/mesh_build.hpp"
 #include "io/json_reader.hpp"
@@ -483,6 +484,23 @@ std::vector<Scene> split_groups(Scene scene) {
     parts.push_back(std::move(part));
   }
   return parts;
+}
+
+Scene keep_groups(Scene scene, const std::vector<std::string>& groups) {
+  std::vector<std::string> present;
+  for (const auto& g : scene.garments)
+    if (std::find(present.begin(), present.end(), g.group) == present.end()) present.push_back(g.group);
+  for (const std::string& group : groups)
+    if (group.empty() || std::find(present.begin(), present.end(), group) == present.end()) {
+      std::string known;
+      for (const std::string& p : present)
+        if (!p.empty()) known += (known.empty() ? "" : ", ") + p;
+      throw std::invalid_argument("no garment group '" + group + "' (" + (known.empty() ? "the scene's garments have no groups" : "its groups: " + known) + ")");
+    }
+  auto wanted = [&](const std::string& group) { return std::find(groups.begin(), groups.end(), group) != groups.end(); };
+  std::erase_if(scene.garments, [&](const GarmentSpec& g) { return !wanted(g.group); });
+  std::erase_if(scene.obstacles, [&](const ObstacleSpec& o) { return !o.group.empty() && !wanted(o.group); });
+  return scene;
 }
 
 }  // namespace vdc

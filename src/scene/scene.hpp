@@ -87,4 +87,11 @@ Scene load_scene(const std::string& path);
 // part), and the scene's settings. A scene without groups is one part.
 std::vector<Scene> split_groups(Scene scene);
 
+// The scene cut down to the named garment groups: their garments, their obstacles and the
+// obstacles of no group. Each group is simulated as it would be in the whole scene (its part of
+// split_groups is the same), so one character of a crowd can be run, or a crowd run in shares.
+// Throws std::invalid_argument naming a group the scene's garments do not have, and the ones
+// they do.
+Scene keep_groups(Scene scene, const std::vector<std::string>& groups);
+
 }  // namespace vdc

@@ -144,6 +144,8 @@ TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
       {"dress too narrow", [&] { return scene("", "", "\"cotton.json\"", R"({"dress": {"bodice_radius": 0.1}})"); }, {},
        {"bodice_radius", "between 0.16 and 0.3"}},
       {"mesh-every not a number", [&] { return scene(); }, {"--mesh-every", "x"}, {"--mesh-every", "'x'"}},
+      {"group the scene does not have", [&] { return scene(R"(, "group": "left")"); }, {"--group", "right"},
+       {"--group", "scene.json", "no garment group 'right'", "its groups: left"}},
   };
   for (const Row& row : rows) {
     std::string path = row.make_scene();

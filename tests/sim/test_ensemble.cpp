@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
@@ -53,6 +54,36 @@ TEST(Ensemble, PartsGiveTheSameResultsInAnyOrderOnAnyThreads) {
   double lowest = 0;
   for (NodeId n : finest.nodes()) lowest = std::min(lowest, finest.x(n).y());
   EXPECT_LT(lowest, -0.01);
+  fs::remove_all(dir);
+}
+
+// A crowd run in shares: the groups kept by keep_groups step exactly as their parts of the
+// whole scene do, and a group the scene does not have is named in the error with the ones it has.
+TEST(Ensemble, GroupsKeptAloneStepAsInTheWholeScene) {
+  const fs::path dir = fs::temp_directory_path() / ("vdcloth-groups-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const std::string path = crowd_scene(dir);
+  Ensemble whole(load_scene(path), SimOptions{SimMode::Adaptive, 2});
+  Ensemble share(keep_groups(load_scene(path), {"c", "a"}), SimOptions{SimMode::Adaptive, 1});
+  ASSERT_EQ(share.parts().size(), 2u);
+  const std::pair<std::size_t, std::size_t> same[] = {{0, 0}, {1, 2}};  // share's part, whole's part
+  for (int f = 0; f < 3; ++f) {
+    whole.step_frame();
+    share.step_frame();
+    for (const auto& [k, w] : same) {
+      const Mesh& ms = share.parts()[k]->scene().garments[0].mesh;
+      const Mesh& mw = whole.parts()[w]->scene().garments[0].mesh;
+      ASSERT_EQ(ms.num_nodes(), mw.num_nodes()) << "part " << w << ", frame " << f + 1;
+      ASSERT_EQ(ms.num_faces(), mw.num_faces()) << "part " << w << ", frame " << f + 1;
+      for (NodeId n : ms.nodes()) ASSERT_EQ(ms.x(n), mw.x(n)) << "part " << w << ", frame " << f + 1;
+    }
+  }
+  EXPECT_EQ(share.parts()[1]->scene().garments[0].name, "c");
+  try {
+    keep_groups(load_scene(path), {"a", "d"});
+    ADD_FAILURE() << "group d was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "no garment group 'd' (its groups: a, b, c)");
+  }
   fs::remove_all(dir);
 }
 
