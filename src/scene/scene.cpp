@@ -466,16 +466,25 @@ Scene load_scene(const std::string& path) {
   return s;
 }
 
+namespace {
+
+// The garments' groups in order of first appearance ("" for garments of no group).
+std::vector<std::string> garment_groups(const std::vector<GarmentSpec>& garments) {
+  std::vector<std::string> groups;
+  for (const auto& g : garments)
+    if (std::find(groups.begin(), groups.end(), g.group) == groups.end()) groups.push_back(g.group);
+  return groups;
+}
+
+}  // namespace
+
 std::vector<Scene> split_groups(Scene scene) {
   std::vector<GarmentSpec> garments = std::move(scene.garments);
   std::vector<ObstacleSpec> obstacles = std::move(scene.obstacles);
   scene.garments.clear();
   scene.obstacles.clear();  // `scene` now holds the settings every part shares
-  std::vector<std::string> groups;
-  for (const auto& g : garments)
-    if (std::find(groups.begin(), groups.end(), g.group) == groups.end()) groups.push_back(g.group);
   std::vector<Scene> parts;
-  for (const std::string& group : groups) {
+  for (const std::string& group : garment_groups(garments)) {
     Scene part = scene;
     for (auto& g : garments)
       if (g.group == group) part.garments.push_back(std::move(g));
@@ -487,9 +496,7 @@ std::vector<Scene> split_groups(Scene scene) {
 }
 
 Scene keep_groups(Scene scene, const std::vector<std::string>& groups) {
-  std::vector<std::string> present;
-  for (const auto& g : scene.garments)
-    if (std::find(present.begin(), present.end(), g.group) == present.end()) present.push_back(g.group);
+  const std::vector<std::string> present = garment_groups(scene.garments);
   for (const std::string& group : groups)
     if (group.empty() || std::find(present.begin(), present.end(), group) == present.end()) {
       std::string known;
