@@ -483,15 +483,17 @@ std::vector<Scene> split_groups(Scene scene) {
   std::vector<ObstacleSpec> obstacles = std::move(scene.obstacles);
   scene.garments.clear();
   scene.obstacles.clear();  // `scene` now holds the settings every part shares
-  std::vector<Scene> parts;
-  for (const std::string& group : garment_groups(garments)) {
-    Scene part = scene;
-    for (auto& g : garments)
-      if (g.group == group) part.garments.push_back(std::move(g));
-    for (const auto& o : obstacles)
-      if (o.group == group || o.group.empty()) part.obstacles.push_back(o);
-    parts.push_back(std::move(part));
+  const std::vector<std::string> groups = garment_groups(garments);
+  std::vector<Scene> parts(groups.size(), scene);
+  // Each garment goes to its group's part once (matching after a move would match the
+  // moved-from garment's emptied group to the part of no group).
+  for (auto& g : garments) {
+    const auto k = static_cast<std::size_t>(std::find(groups.begin(), groups.end(), g.group) - groups.begin());
+    parts[k].garments.push_back(std::move(g));
   }
+  for (std::size_t k = 0; k < groups.size(); ++k)
+    for (const auto& o : obstacles)
+      if (o.group == groups[k] || o.group.empty()) parts[k].obstacles.push_back(o);
   return parts;
 }
 

@@ -87,5 +87,34 @@ TEST(Ensemble, GroupsKeptAloneStepAsInTheWholeScene) {
   fs::remove_all(dir);
 }
 
+// A scene of grouped and ungrouped garments: each garment lands in its own group's part once,
+// the ungrouped ones in one part of their own, and an obstacle of no group in every part.
+TEST(Ensemble, SplitGivesEachGarmentToItsGroupOnce) {
+  Scene scene;
+  for (const auto& [name, group] : {std::pair<std::string, std::string>{"a", "x"}, {"b", ""}, {"c", "x"}, {"d", "y"}}) {
+    GarmentSpec g;
+    g.name = name;
+    g.group = group;
+    scene.garments.push_back(g);
+  }
+  ObstacleSpec floor, body;
+  floor.name = "floor";
+  body.name = "body";
+  body.group = "y";
+  scene.obstacles = {floor, body};
+  const std::vector<Scene> parts = split_groups(scene);
+  ASSERT_EQ(parts.size(), 3u);
+  auto names = [](const Scene& s) {
+    std::string n;
+    for (const auto& g : s.garments) n += "[" + g.name + "]";
+    n += " |";
+    for (const auto& o : s.obstacles) n += " " + o.name;
+    return n;
+  };
+  EXPECT_EQ(names(parts[0]), "[a][c] | floor");
+  EXPECT_EQ(names(parts[1]), "[b] | floor");
+  EXPECT_EQ(names(parts[2]), "[d] | floor body");
+}
+
 }  // namespace
 }  // namespace vdc
