@@ -1,6 +1,7 @@
 #include "app/cli.hpp"
 
 #include "app/check_command.hpp"
+#include "app/fidelity_command.hpp"
 #include "app/render_command.hpp"
 #include "app/table1.hpp"
 
@@ -32,17 +33,21 @@ const char* kMainHelp =
     "  vdcloth bench table1 [options]     the seed paper's Table 1 on the project's scenes\n"
     "  vdcloth render SCENE.json RUN_DIR  pictures of a run through the scene's camera; with\n"
     "                 [options]           --compare, two runs side by side and their differences\n"
+    "  vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [options]\n"
+    "                                     how like a reference run a run looks through the scene's\n"
+    "                                     camera (silhouette overlap, wrinkle detail, popping),\n"
+    "                                     judged shot by shot against the chaos floor\n"
     "  vdcloth check RUN_DIR [--every N]  no garment crosses itself, another or a body at any\n"
     "                                     written frame (exact triangle tests)\n"
     "  vdcloth --help                     this text\n"
     "  vdcloth --version                  version\n"
     "\n"
-    "`vdcloth run --help`, `vdcloth bench table1 --help`, `vdcloth render --help` and `vdcloth check --help` list the options. Exit status: 0 done, 2 bad input or usage,\n"
-    "3 a simulation failure that could not be recovered.\n";
+    "`vdcloth COMMAND --help` lists a command's options. Exit status: 0 done, 2 bad input or usage,\n"
+    "3 a simulation failure that could not be recovered (check: a crossing; fidelity: a failed verdict).\n";
 
 const char* kRunHelp =
     "usage: vdcloth run SCENE.json [--mode fixed|adaptive|view] [--frames N] [--out DIR] [--threads N]\n"
-    "                  [--mesh-every N] [--checkpoint-every N] [--resume] [--group NAME]...\n"
+    "                  [--mesh-every N] [--checkpoint-every N] [--resume] [--group NAME]... [--perturb E]\n"
     "\n"
     "Simulates SCENE.json and writes DIR/stats.csv (one row a frame), DIR/frames/ (one OBJ per garment\n"
     "and obstacle per frame: cloth_<name>.<frame>.obj, obstacle_<name>.<frame>.obj, frame 0000 is the\n"
@@ -58,11 +63,26 @@ const char* kRunHelp =
     "  --checkpoint-every N  keep DIR/checkpoint.bin at frames N, 2N, ... and the last; 0: none\n"
     "                (default: 10)\n"
     "  --resume      go on with the run in DIR from its checkpoint, as if it had never stopped: same\n"
-    "                scene file and mode; --frames may give a later end than the first run's\n"
+    "                scene file, mode and perturbation; --frames may give a later end than the\n"
+    "                first run's\n"
     "  --group NAME  simulate only this garment group (repeatable): its garments, its obstacles and\n"
     "                those of no group. Groups are simulated apart, so each comes out as in the\n"
     "                whole scene: one character of a crowd, or a crowd run in shares\n"
+    "  --perturb E   gravity times (1 + E), |E| at most 1e-3 (default: 0): with 1e-6, a run that\n"
+    "                differs from the unperturbed one only by the growth of a perturbation below any\n"
+    "                physical meaning, the chaos floor's reference for `vdcloth fidelity --floor`\n"
     "  --help        this text\n";
+
+// --perturb's bound: a thousandth of gravity is still far below what a scene's author would
+// notice, and a larger change is a different scene, not a perturbation.
+constexpr double kMaxPerturbation = 1e-3;
+
+// A number as the user would write it (1e-06).
+std::string number_text(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
 
 struct RunArgs {
   std::string scene;
@@ -74,6 +94,7 @@ struct RunArgs {
   int checkpoint_every = 10;  // checkpoint at frames that are multiples of this, and the last; 0: none
   bool resume = false;
   std::vector<std::string> groups;  // --group: simulate only these garment groups
+  double perturbation = 0;  // --perturb: gravity times (1 + perturbation)
 };
 
 }  // namespace
@@ -89,6 +110,22 @@ int parse_positive_int(const std::string& option, const std::string& value) {
   if (used != value.size() || value.empty() || n < 1 || n > 1'000'000)
     throw UsageError(option + " expects a whole number from 1 to 1000000, got '" + value + "'");
   return static_cast<int>(n);
+}
+
+double parse_number(const std::string& option, const std::string& value, double lowest, double highest) {
+  std::size_t used = 0;
+  double x = 0;
+  try {
+    x = std::stod(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != value.size() || value.empty() || !(x >= lowest && x <= highest)) {
+    std::ostringstream range;
+    range << lowest << " to " << highest;
+    throw UsageError(option + " expects a number from " + range.str() + ", got '" + value + "'");
+  }
+  return x;
 }
 
 namespace {
@@ -121,6 +158,8 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
       r.resume = true;
     } else if (a == "--group") {
       r.groups.push_back(value());
+    } else if (a == "--perturb") {
+      r.perturbation = parse_number(a, value(), -kMaxPerturbation, kMaxPerturbation);
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "'");
     } else if (r.scene.empty()) {
@@ -156,6 +195,9 @@ Checkpoint checkpoint_to_resume(const RunArgs& args, const std::string& dir, uin
     throw InputError(path, "", "written by another build of vdcloth, which may simulate differently: run without --resume to start again");
   if (c.mode != sim_mode_name(args.mode))
     throw UsageError("--resume: the run in " + dir + " is in " + c.mode + " mode, not " + sim_mode_name(args.mode));
+  if (c.perturbation != args.perturbation)
+    throw UsageError("--resume: the run in " + dir + " was made with --perturb " + number_text(c.perturbation) + ", not " +
+                     number_text(args.perturbation) + "; resume it with --perturb " + number_text(c.perturbation));
   if (c.checkpoint_every != args.checkpoint_every)
     throw UsageError("--resume: the run in " + dir + " was checkpointed every " + std::to_string(c.checkpoint_every) +
                      " frames; resume it with --checkpoint-every " + std::to_string(c.checkpoint_every) +
@@ -173,11 +215,13 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     }
   }
   if (args.frames) scene.frames = *args.frames;
+  scene.gravity *= 1 + args.perturbation;
   const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::string dir = args.out.empty() ? "out/" + scene.name : args.out;
   const int frames = scene.frames;
   Checkpoint progress;  // what each checkpoint of this run records besides the meshes
   progress.checkpoint_every = args.checkpoint_every;
+  progress.perturbation = args.perturbation;
   if (args.checkpoint_every > 0 || args.resume) {
     progress.scene_hash = file_hash(args.scene);
     progress.build_hash = executable_hash();
@@ -208,6 +252,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   if (args.mesh_every > 0 && !resume) output.write_frame(sim, 0);
   out << "vdcloth: " << sim.name() << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", " << threads
       << " thread(s), " << sim.num_faces() << " faces, output " << dir;
+  if (args.perturbation != 0) out << ", gravity perturbed by " << number_text(args.perturbation);
   if (resume) out << ", resumed at frame " << first;
   out << std::endl;
 
@@ -221,7 +266,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   auto stop_part_way = [&](const std::string& what, const std::string& why) {
     if (line_open) out << "\n";
     try {
-      output.write_summary(sim, "failed", what + ": " + why, usage(), segments, done, threads);
+      output.write_summary(sim, "failed", what + ": " + why, usage(), segments, done, threads, args.perturbation);
     } catch (const InputError&) {
     }
     err << "vdcloth: " << what << ": " << why << " (frames 0 to " << done << " are in " << dir << ")" << std::endl;
@@ -261,7 +306,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   }
   if (line_open) out << "\n";
   const ResourceUsage total = usage();
-  output.write_summary(sim, "done", "", total, segments, done, threads);
+  output.write_summary(sim, "done", "", total, segments, done, threads, args.perturbation);
   const double this_segment = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out << "vdcloth: done, " << done - first << " frames in " << format_duration(this_segment) << " ("
       << std::fixed << std::setprecision(3) << this_segment / std::max(done - first, 1) << " s/frame); results in " << dir << std::endl;
@@ -286,6 +331,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (args[0] == "check") return check_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
     if (args[0] == "render") return render_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
+    if (args[0] == "fidelity") return fidelity_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
     if (args[0] != "run") throw UsageError("unknown command '" + args[0] + "' (try vdcloth --help)");
     for (std::size_t i = 1; i < args.size(); ++i)
       if (args[i] == "--help" || args[i] == "-h") {

@@ -19,6 +19,9 @@ class UsageError : public std::runtime_error {
 
 // The whole number of an option's value, 1 to 1,000,000; UsageError naming the option otherwise.
 int parse_positive_int(const std::string& option, const std::string& value);
+// The number of an option's value, from `lowest` to `highest`; UsageError naming the option and
+// the range otherwise.
+double parse_number(const std::string& option, const std::string& value, double lowest, double highest);
 
 // `interactive`: out is a terminal, so progress redraws one line instead of logging each frame.
 int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool interactive);

@@ -11,12 +11,11 @@
 #include <sstream>
 
 #include "app/cli.hpp"
+#include "app/run_frames.hpp"
 #include "core/error.hpp"
-#include "io/obj.hpp"
 #include "io/png.hpp"
 #include "io/run_output.hpp"
 #include "render/compare.hpp"
-#include "render/rasterizer.hpp"
 #include "scene/scene.hpp"
 
 namespace vdc {
@@ -59,18 +58,8 @@ RenderArgs parse_render_args(const std::vector<std::string>& args) {
     if (a == "--compare") r.compare = value();
     else if (a == "--every") r.every = parse_positive_int(a, value());
     else if (a == "--out") r.out = value();
-    else if (a == "--scale") {
-      const std::string& v = value();
-      std::size_t used = 0;
-      double s = 0;
-      try {
-        s = std::stod(v, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != v.size() || !(s >= 0.05 && s <= 4)) throw UsageError("--scale expects a number from 0.05 to 4, got '" + v + "'");
-      r.scale = s;
-    } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for render (try vdcloth render --help)");
+    else if (a == "--scale") r.scale = parse_number(a, value(), 0.05, 4);
+    else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for render (try vdcloth render --help)");
     else positional.push_back(a);
   }
   if (positional.size() != 2) throw UsageError("render expects SCENE.json and RUN_DIR (try vdcloth render --help)");
@@ -78,32 +67,6 @@ RenderArgs parse_render_args(const std::vector<std::string>& args) {
   r.run = positional[1];
   if (r.out.empty()) r.out = r.run + (r.compare.empty() ? "/render" : "/compare");
   return r;
-}
-
-// Garment colours, given in name order, so that the same garment has the same colour in every
-// run of a scene.
-const Vec3 kClothPalette[] = {{0.80, 0.25, 0.22}, {0.93, 0.72, 0.20}, {0.22, 0.42, 0.78}, {0.30, 0.65, 0.38},
-                              {0.60, 0.35, 0.70}, {0.90, 0.50, 0.25}, {0.25, 0.70, 0.75}, {0.85, 0.40, 0.60}};
-
-struct LoadedFrame {
-  std::vector<RenderMesh> meshes;
-  std::vector<char> cloth;
-};
-
-LoadedFrame load_frame(const FrameFiles& files) {
-  LoadedFrame f;
-  std::size_t garments = 0;
-  for (const auto& [key, path] : files) {
-    const bool cloth = key.rfind("cloth_", 0) == 0;
-    const MeshSource source = read_obj_source(path, false);
-    RenderMesh mesh;
-    mesh.positions = source.positions;
-    mesh.faces = position_triangles(source);
-    mesh.colour = cloth ? kClothPalette[garments++ % std::size(kClothPalette)] : Vec3(0.78, 0.74, 0.70);
-    f.meshes.push_back(std::move(mesh));
-    f.cloth.push_back(cloth);
-  }
-  return f;
 }
 
 std::string numbered(const std::string& dir, const std::string& stem, int frame, const std::string& ext) {
@@ -123,49 +86,45 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
   const RenderArgs r = parse_render_args(args);
   const Scene scene = load_scene(r.scene);
   if (!scene.camera) throw InputError(r.scene, "camera", "the scene has no camera to render through");
-  std::map<int, FrameFiles> frames = read_frame_files(r.run);
+  const std::map<int, FrameFiles> frames = read_frame_files(r.run);
   std::map<int, FrameFiles> other;
+  std::vector<int> to_draw;
+  for (const auto& [frame, files] : frames) to_draw.push_back(frame);
   if (!r.compare.empty()) {
     other = read_frame_files(r.compare);
-    for (auto it = frames.begin(); it != frames.end();) it = other.count(it->first) ? std::next(it) : frames.erase(it);
-    if (frames.empty()) throw InputError(r.compare, "", "no frame in common with " + r.run);
+    to_draw = frames_in_common({&frames, &other});
+    if (to_draw.empty()) throw InputError(r.compare, "", "no frame in common with " + r.run);
   }
   std::error_code ec;
   fs::create_directories(r.out, ec);
   if (ec) throw InputError(r.out, "", "cannot create output directory: " + ec.message());
 
-  std::ofstream csv;
+  std::optional<PartialTable> csv;
   if (!r.compare.empty()) {
-    // Written under another name until the last frame is in, so a stopped render leaves no
-    // table that looks complete.
-    fs::remove(r.out + "/compare.csv", ec);
-    csv.open(r.out + "/compare.csv.partial");
-    if (!csv) throw InputError(r.out + "/compare.csv.partial", "", "cannot write");
-    csv << "frame,time,cloth_pixels_a,cloth_pixels_b,cloth_iou,mean_abs_diff\n";
+    csv.emplace(r.out + "/compare.csv");
+    csv->stream() << "frame,time,cloth_pixels_a,cloth_pixels_b,cloth_iou,mean_abs_diff\n";
   }
   int drawn = 0, index = 0;
   double iou_sum = 0, iou_min = 1, diff_sum = 0;
-  for (const auto& [frame, files] : frames) {
+  for (const int frame : to_draw) {
     if (index++ % r.every != 0) continue;
     const double time = frame * scene.frame_time;
     const Camera camera = scene.camera->at(time);
-    const LoadedFrame a = load_frame(files);
-    const RenderedFrame image_a = render(camera, a.meshes, r.scale);
+    const DrawnFrame a = draw_frame(camera, frames.at(frame), r.scale);
     std::string written;
     if (r.compare.empty()) {
       written = numbered(r.out, "frame", frame, ".png");
-      if (!write_png(image_a.image, written)) throw InputError(written, "", "cannot write");
+      if (!write_png(a.pixels.image, written)) throw InputError(written, "", "cannot write");
     } else {
-      const LoadedFrame b = load_frame(other.at(frame));
-      const RenderedFrame image_b = render(camera, b.meshes, r.scale);
-      const RenderComparison c = compare_renders(image_a, a.cloth, image_b, b.cloth);
-      csv << frame << "," << time << "," << c.cloth_pixels_a << "," << c.cloth_pixels_b << "," << std::setprecision(4) << c.cloth_iou << ","
-          << c.mean_abs_diff << "\n";
+      const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale);
+      const RenderComparison c = compare_renders(a.pixels, a.cloth, b.pixels, b.cloth);
+      csv->stream() << frame << "," << time << "," << c.cloth_pixels_a << "," << c.cloth_pixels_b << "," << std::setprecision(4) << c.cloth_iou
+                    << "," << c.mean_abs_diff << "\n";
       iou_sum += c.cloth_iou;
       iou_min = std::min(iou_min, c.cloth_iou);
       diff_sum += c.mean_abs_diff;
       written = numbered(r.out, "compare", frame, ".png");
-      if (!write_png(side_by_side(image_a.image, image_b.image), written)) throw InputError(written, "", "cannot write");
+      if (!write_png(side_by_side(a.pixels.image, b.pixels.image), written)) throw InputError(written, "", "cannot write");
     }
     ++drawn;
     out << "vdcloth render: frame " << frame << " -> " << written << "\n" << std::flush;
@@ -175,11 +134,7 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
     out << "; cloth silhouette overlap mean " << std::fixed << std::setprecision(3) << iou_sum / drawn << ", min " << iou_min
         << "; mean pixel difference on cloth " << std::setprecision(1) << diff_sum / drawn << " of 255";
   out << "\n";
-  if (csv.is_open()) {
-    csv.close();
-    fs::rename(r.out + "/compare.csv.partial", r.out + "/compare.csv", ec);
-    if (ec) throw InputError(r.out + "/compare.csv", "", "cannot write: " + ec.message());
-  }
+  if (csv) csv->finish();
   return kExitOk;
 }
 

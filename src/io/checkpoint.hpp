@@ -1,6 +1,6 @@
 // A run's checkpoint, RUN/checkpoint.bin: everything `vdcloth run --resume` needs to go on from
 // the frame it was written at as the run itself would have (every part's garment meshes, array
-// for array), plus the mode, a hash of the scene file and the run's costs so far.
+// for array), plus the mode, the perturbation, a hash of the scene file and the run's costs so far.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -17,6 +17,7 @@ struct Checkpoint {
   uint64_t scene_hash = 0;  // file_hash of the scene file the run was made from
   uint64_t build_hash = 0;  // executable_hash of the vdcloth that wrote it
   int checkpoint_every = 0; // the run's interval: the solvers restart at each checkpoint
+  double perturbation = 0;  // vdcloth run --perturb: gravity times (1 + perturbation)
   std::string mode;         // sim_mode_name
   int frame = 0;
   int segments = 1;         // processes the run has been made in, this one included

@@ -158,7 +158,7 @@ void RunOutput::write_stats_row(const FrameStats& s) {
 }
 
 void RunOutput::write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
-                              int segments, int frames_done, int threads) const {
+                              int segments, int frames_done, int threads, double perturbation) const {
   nlohmann::json j;
   const Scene& scene = run.parts().front()->scene();
   j["scene"] = run.path();
@@ -172,6 +172,7 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   j["frame_time"] = scene.frame_time;
   j["substeps"] = scene.substeps;
   j["linear_solver"] = linear_solver_name(scene.solver.linear);
+  j["perturbation"] = perturbation;
   j["total_seconds"] = usage.wall_seconds;
   j["segments"] = segments;
   j["cpu_seconds"] = usage.cpu_seconds;

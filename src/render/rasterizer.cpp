@@ -1,5 +1,6 @@
 // Scanline-free rasterization: each triangle's pixel box is walked with edge functions, depth is
-// interpolated as 1/z (linear in screen space) and kept in a z-buffer; Gouraud shading.
+// interpolated as 1/z (linear in screen space) and kept in a z-buffer; Gouraud shading, and the
+// shading normal interpolated alongside it.
 #include "render/rasterizer.hpp"
 
 #include <algorithm>
@@ -25,9 +26,11 @@ RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes
   frame.image.height = height;
   frame.image.rgb.resize(3 * pixels);
   frame.mesh.assign(pixels, -1);
+  frame.depth.assign(pixels, std::numeric_limits<double>::infinity());
+  frame.normal.assign(pixels, Vec3::Zero());
   for (std::size_t i = 0; i < pixels; ++i)
     for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(kBackground[k]);
-  std::vector<double> depth(pixels, std::numeric_limits<double>::infinity());
+  std::vector<double>& depth = frame.depth;
 
   const Vec3 forward = camera.basis()[2];
   for (std::size_t m = 0; m < meshes.size(); ++m) {
@@ -47,6 +50,8 @@ RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
       const double len = vertex_normal[i].norm();
       brightness[i] = 0.25 + 0.75 * (len > 0 ? std::abs(vertex_normal[i].dot(forward)) / len : 1.0);
+      // A vertex without a normal is lit as if facing the camera, and its normal says so.
+      vertex_normal[i] = len > 0 ? Vec3(vertex_normal[i] / len) : Vec3(-forward);
     }
     for (const auto& f : mesh.faces) {
       const std::array<std::size_t, 3> v = {static_cast<std::size_t>(f[0]), static_cast<std::size_t>(f[1]), static_cast<std::size_t>(f[2])};
@@ -73,6 +78,10 @@ RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes
           frame.mesh[i] = static_cast<int32_t>(m);
           const Vec3 colour = mesh.colour * (wa * brightness[v[0]] + wb * brightness[v[1]] + wc * brightness[v[2]]);
           for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(colour[k]);
+          Vec3 n = wa * vertex_normal[v[0]] + wb * vertex_normal[v[1]] + wc * vertex_normal[v[2]];
+          const double len = n.norm();
+          n = len > 0 ? Vec3(n / len) : Vec3(-forward);
+          frame.normal[i] = n.dot(forward) > 0 ? Vec3(-n) : n;
         }
     }
   }

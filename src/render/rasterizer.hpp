@@ -1,7 +1,8 @@
 // Preview rendering of a frame through the scene's camera: z-buffered triangles, smooth-shaded
 // (vertex normals) by a distant light at the eye, for looking at a shot and comparing two runs
-// of it pixel by pixel. Not a production renderer: no clipping (a triangle with a corner behind
-// the near plane is skipped), no antialiasing.
+// of it pixel by pixel (each pixel keeps its mesh, depth and shading normal for measuring). Not
+// a production renderer: no clipping (a triangle with a corner behind the near plane is
+// skipped), no antialiasing.
 #pragma once
 #include <array>
 #include <vector>
@@ -18,9 +19,15 @@ struct RenderMesh {
   Vec3 colour = Vec3(0.7, 0.7, 0.7);  // base RGB in [0, 1]
 };
 
+// Per-pixel buffers in row-major order, `image.width` pixels a row.
 struct RenderedFrame {
   RgbImage image;
   std::vector<int32_t> mesh;  // per pixel: the index of the nearest mesh, -1 for the background
+  std::vector<double> depth;  // camera-space z of the nearest surface, +infinity for the background
+  // The unit shading normal: the area-weighted vertex normals the shading interpolates,
+  // interpolated the same way, normalised, and turned to face the camera (n . forward <= 0);
+  // zero for the background.
+  std::vector<Vec3> normal;
 };
 
 // The image of `meshes` seen by `camera`, at `scale` times the camera's image size.

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <functional>
 #include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <sstream>
 
@@ -19,6 +20,7 @@
 #include "app/table1.hpp"
 #include "core/binary_io.hpp"
 #include "core/error.hpp"
+#include "view/camera.hpp"
 
 namespace vdc {
 namespace {
@@ -144,6 +146,7 @@ TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
       {"dress too narrow", [&] { return scene("", "", "\"cotton.json\"", R"({"dress": {"bodice_radius": 0.1}})"); }, {},
        {"bodice_radius", "between 0.16 and 0.3"}},
       {"mesh-every not a number", [&] { return scene(); }, {"--mesh-every", "x"}, {"--mesh-every", "'x'"}},
+      {"perturbation beyond a thousandth", [&] { return scene(); }, {"--perturb", "0.01"}, {"--perturb", "-0.001 to 0.001", "'0.01'"}},
       {"group the scene does not have", [&] { return scene(R"(, "group": "left")"); }, {"--group", "right"},
        {"--group", "scene.json", "no garment group 'right'", "its groups: left"}},
   };
@@ -469,6 +472,7 @@ TEST_F(CliTest, ResumeRefusesWhatItCannotGoOnFromAndLeavesTheRunAlone) {
        {},
        {"checkpoint.bin", "another build of vdcloth"}},
       {"another interval", [] {}, {"--checkpoint-every", "5"}, {"checkpointed every 10 frames", "--checkpoint-every 10"}},
+      {"another perturbation", [] {}, {"--perturb", "1e-6"}, {"made with --perturb 0, not 1e-06"}},
   };
   for (const Case& c : cases) {
     std::ofstream(checkpoint, std::ios::binary) << good;
@@ -577,6 +581,259 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
     EXPECT_EQ(n, 3) << name;  // header and two frames
     EXPECT_TRUE(fs::exists(out + "/" + name + "/view/stats.csv")) << name;
   }
+}
+
+// Rows of a CSV file cut into cells, empty cells kept (the header first).
+std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells(1);
+    for (const char c : line) {
+      if (c == ',') cells.emplace_back();
+      else cells.back() += c;
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+std::string first_line(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
+const std::string kFidelityFramesHeader =
+    "frame,time,shot,cloth_pixels_run,cloth_pixels_reference,overlap,floor_overlap,detail_run,detail_reference,detail_floor,"
+    "popping_run,popping_reference,popping_floor";
+const std::string kFidelityShotsHeader =
+    "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
+    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed";
+
+// A hanging sheet seen from above and in front, with a cut to another view at 0.07 s: frames 0
+// and 1 are shot 0, frames 2 to 4 shot 1.
+const char* kCutCamera =
+    R"("camera": {"fov": 40, "width": 96, "height": 72, "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}, )"
+    R"({"time": 0.07, "position": [0.5, 1.2, 1.8], "target": [0.5, -0.2, -0.5], "cut": true}]}, )";
+
+TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
+  const std::string path = scene(", \"handles\": [{\"uv\": [[0, 1], [1, 1]]}]", kCutCamera);
+  ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "4", "--threads", "1"}), kExitOk) << err_.str();
+  ASSERT_EQ(run({"fidelity", path, out_dir(), out_dir(), "--floor", out_dir(), "--scale", "1"}), kExitOk) << out_.str() << err_.str();
+  EXPECT_NE(out_.str().find("shot 0 (frames 0-1): overlap 1.000 mean / 1.000 min (floor 1.000 / 1.000), detail 100% of reference, "
+                            "popping 1.00x: pass"),
+            std::string::npos)
+      << out_.str();
+  EXPECT_NE(out_.str().find("shot 1 (frames 2-4): "), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("all (frames 0-4): "), std::string::npos) << out_.str();
+  const fs::path dir = dir_ / "out" / "fidelity";
+  EXPECT_FALSE(fs::exists(dir / "fidelity.csv.partial"));
+  EXPECT_FALSE(fs::exists(dir / "fidelity_shots.csv.partial"));
+  const auto frames = read_csv(dir / "fidelity.csv");
+  ASSERT_EQ(frames.size(), 6u);
+  EXPECT_EQ(frames[0].size(), 13u);
+  double most_popping = 0;
+  for (int k = 0; k <= 4; ++k) {
+    const std::vector<std::string>& row = frames[static_cast<std::size_t>(k + 1)];
+    ASSERT_EQ(row.size(), 13u) << k;
+    EXPECT_EQ(row[0], std::to_string(k));
+    EXPECT_EQ(row[2], k < 2 ? "0" : "1") << "shot of frame " << k;
+    EXPECT_GT(std::stoi(row[3]), 300) << "the sheet is in the picture at frame " << k;
+    EXPECT_EQ(row[3], row[4]) << k;
+    EXPECT_EQ(row[5], "1") << k;
+    EXPECT_EQ(row[6], "1") << k;
+    EXPECT_EQ(row[7], row[8]) << k;
+    EXPECT_EQ(row[7], row[9]) << k;
+    const bool first_of_shot = k == 0 || k == 2;
+    EXPECT_EQ(row[10].empty(), first_of_shot) << k;
+    EXPECT_EQ(row[10], row[11]) << k;
+    EXPECT_EQ(row[10], row[12]) << k;
+    if (!first_of_shot) most_popping = std::max(most_popping, std::stod(row[10]));
+  }
+  EXPECT_GT(most_popping, 0) << "the sheet falls";
+  EXPECT_GT(std::stod(frames[5][7]), 0) << "the hanging sheet curves";
+  EXPECT_EQ(first_line(dir / "fidelity.csv"), kFidelityFramesHeader);
+  EXPECT_EQ(first_line(dir / "fidelity_shots.csv"), kFidelityShotsHeader);
+  const auto shots = read_csv(dir / "fidelity_shots.csv");
+  ASSERT_EQ(shots.size(), 4u);
+  EXPECT_EQ(shots[0].size(), 17u);
+  const std::vector<std::string> expect_shot{"0", "1", "all"}, expect_frames{"2", "3", "5"}, expect_pairs{"1", "2", "3"};
+  for (std::size_t k = 1; k < shots.size(); ++k) {
+    const std::vector<std::string>& row = shots[k];
+    ASSERT_EQ(row.size(), 17u) << k;
+    EXPECT_EQ(row[0], expect_shot[k - 1]);
+    EXPECT_EQ(row[3], expect_frames[k - 1]) << row[0];
+    EXPECT_EQ(row[4], "1") << row[0];
+    EXPECT_EQ(row[6], "1") << row[0];
+    EXPECT_EQ(row[10], "1") << row[0];
+    EXPECT_EQ(row[11], expect_pairs[k - 1]) << row[0];
+    EXPECT_EQ(row[14], "1") << row[0];
+    EXPECT_EQ(row[15], "pass") << row[0];
+    EXPECT_EQ(row[16], "") << row[0];
+  }
+  // Every other frame: frame 4's popping is measured from frame 3, drawn for it, as above.
+  const fs::path every = dir_ / "every2";
+  ASSERT_EQ(run({"fidelity", path, out_dir(), out_dir(), "--every", "2", "--scale", "1", "--out", every.string()}), kExitOk) << err_.str();
+  const auto sparse = read_csv(every / "fidelity.csv");
+  ASSERT_EQ(sparse.size(), 4u);
+  EXPECT_EQ(sparse[0].size(), 13u);
+  EXPECT_EQ(sparse[0][0] + "," + sparse[0][1], "frame,time");
+  EXPECT_EQ(sparse[2][0], "2");
+  EXPECT_EQ(sparse[2][10], "") << "frame 2 starts shot 1";
+  EXPECT_EQ(sparse[3][0], "4");
+  EXPECT_EQ(sparse[3][10], frames[5][10]);
+  EXPECT_EQ(sparse[3][6], "") << "no floor";
+}
+
+// Two flat rectangles facing a still camera, in a scene without gravity (the run keeps them
+// where they are), their edges a quarter pixel off the pixel centres: 20 x 24 and 16 x 24 pixels.
+// A copy of the run with the first moved 5 pixels sideways overlaps the run by
+// (15 x 24 + 16 x 24) / (25 x 24 + 16 x 24) = 31/41 at every frame.
+TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHand) {
+  const Camera lens{.position = Vec3(0, 0, 2), .target = Vec3::Zero(), .fov_y_degrees = 40, .width = 64, .height = 48};
+  const double metres_per_pixel = 2 / lens.focal_pixels();  // at the rectangles' depth
+  // The rectangle that covers screen x from x0 to x1 and y from y0 to y1 (y down).
+  auto rectangle = [&](double x0, double x1, double y0, double y1) {
+    const double left = (x0 - 32) * metres_per_pixel, right = (x1 - 32) * metres_per_pixel;
+    const double top = (24 - y0) * metres_per_pixel, bottom = (24 - y1) * metres_per_pixel;
+    std::ostringstream obj;
+    obj << std::setprecision(17) << "v " << left << " " << bottom << " 0\nv " << right << " " << bottom << " 0\nv " << right << " " << top
+        << " 0\nv " << left << " " << top << " 0\nvt 0 0\nvt " << right - left << " 0\nvt " << right - left << " " << top - bottom << "\nvt 0 "
+        << top - bottom << "\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+    return obj.str();
+  };
+  write("a.obj", rectangle(10.25, 30.25, 12.25, 36.25));  // columns 10 to 29, rows 12 to 35
+  write("b.obj", rectangle(40.25, 56.25, 12.25, 36.25));  // columns 40 to 55
+  const std::string path = write(
+      "still.json",
+      R"({"frames": 2, "substeps": 2, "gravity": [0, 0, 0], "remeshing": {"fixed_size": 2}, )"
+      R"("camera": {"fov": 40, "width": 64, "height": 48, "keys": [{"time": 0, "position": [0, 0, 2], "target": [0, 0, 0]}]}, )"
+      R"("garments": [{"name": "a", "mesh": "a.obj", "material": "cotton.json"}, {"name": "b", "mesh": "b.obj", "material": "cotton.json"}]})");
+  ASSERT_EQ(run({"run", path, "--out", out_dir(), "--threads", "1"}), kExitOk) << err_.str();
+  const fs::path moved = dir_ / "moved";
+  fs::copy(out_dir(), moved, fs::copy_options::recursive);
+  int moved_files = 0;
+  for (const auto& entry : fs::directory_iterator(moved / "frames")) {
+    if (entry.path().filename().string().rfind("cloth_a.", 0) != 0 || entry.path().extension() != ".obj") continue;
+    std::ifstream in(entry.path());
+    std::ostringstream text;
+    text << std::setprecision(17);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("v ", 0) == 0) {
+        std::istringstream v(line.substr(2));
+        double x = 0, y = 0, z = 0;
+        v >> x >> y >> z;
+        text << "v " << x + 5 * metres_per_pixel << " " << y << " " << z << "\n";
+      } else {
+        text << line << "\n";
+      }
+    }
+    in.close();
+    std::ofstream(entry.path()) << text.str();
+    ++moved_files;
+  }
+  ASSERT_EQ(moved_files, 3);
+  // Without a floor the overlap is not judged; nothing moves in either run (popping 0 / 0).
+  const fs::path plain = dir_ / "plain", floored = dir_ / "floored";
+  ASSERT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--scale", "1", "--out", plain.string()}), kExitOk) << out_.str() << err_.str();
+  const auto rows = read_csv(plain / "fidelity.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    EXPECT_EQ(rows[k][3], "864") << k;
+    EXPECT_EQ(rows[k][4], "864") << k;
+    EXPECT_NEAR(std::stod(rows[k][5]), 31.0 / 41.0, 1e-6) << k;
+  }
+  // Against the unmoved run as the floor (overlap 1), both overlap targets fail: exit status 3.
+  EXPECT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--floor", out_dir(), "--scale", "1", "--out", floored.string()}),
+            kExitSimulationFailed)
+      << out_.str() << err_.str();
+  EXPECT_NE(out_.str().find("overlap 0.756 mean / 0.756 min (floor 1.000 / 1.000)"), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find(": fail (overlap mean, overlap min)"), std::string::npos) << out_.str();
+  const auto shots = read_csv(floored / "fidelity_shots.csv");
+  ASSERT_EQ(shots.size(), 3u);
+  EXPECT_EQ(shots[2][0], "all");
+  EXPECT_EQ(shots[2][15], "fail");
+  EXPECT_EQ(shots[2][16], "overlap mean;overlap min");
+}
+
+TEST_F(CliTest, FidelityBadInputsExitTwoAndWriteNothing) {
+  const std::string no_camera = write("bare.json", read_file(scene()));
+  const std::string with_camera = scene("", kCutCamera);
+  ASSERT_EQ(run({"run", with_camera, "--out", out_dir(), "--frames", "2", "--threads", "1"}), kExitOk) << err_.str();
+  const fs::path lonely = dir_ / "lonely" / "frames";  // a run with only a frame the other lacks
+  fs::create_directories(lonely);
+  fs::copy_file(dir_ / "out" / "frames" / "cloth_s.0001.obj", lonely / "cloth_s.0007.obj");
+  const fs::path damaged = dir_ / "damaged";  // a mesh the command meets part-way
+  fs::copy(out_dir(), damaged, fs::copy_options::recursive);
+  std::ofstream(damaged / "frames" / "cloth_s.0002.obj") << "v 0 0 0\nf 1 2 3\n";
+  const std::string fid = (dir_ / "fid").string();
+  struct Case {
+    const char* what;
+    std::vector<std::string> args;
+    std::vector<std::string> expect;
+  };
+  const std::string run_dir = out_dir(), nowhere = (dir_ / "nowhere").string();
+  const std::vector<Case> cases{
+      {"missing run", {with_camera, nowhere, run_dir}, {"nowhere/frames", "no such directory"}},
+      {"missing reference", {with_camera, run_dir, nowhere}, {"nowhere/frames"}},
+      {"missing floor", {with_camera, run_dir, run_dir, "--floor", nowhere}, {"nowhere/frames"}},
+      {"no frame in common", {with_camera, run_dir, (dir_ / "lonely").string()}, {"no frame in common with", "lonely"}},
+      {"no camera", {no_camera, run_dir, run_dir}, {"bare.json", "camera", "no camera"}},
+      {"missing scene", {(dir_ / "none.json").string(), run_dir, run_dir}, {"none.json"}},
+      {"a damaged mesh", {with_camera, damaged.string(), run_dir}, {"cloth_s.0002.obj"}},
+      {"two directories only", {with_camera, run_dir}, {"fidelity expects SCENE.json, RUN_DIR and REFERENCE_DIR"}},
+      {"every 0", {with_camera, run_dir, run_dir, "--every", "0"}, {"--every", "'0'"}},
+      {"scale 9", {with_camera, run_dir, run_dir, "--scale", "9"}, {"--scale", "0.05 to 4", "'9'"}},
+      {"negative detail", {with_camera, run_dir, run_dir, "--detail", "-1"}, {"--detail", "0 to 10"}},
+      {"popping not a number", {with_camera, run_dir, run_dir, "--popping", "x"}, {"--popping", "'x'"}},
+      {"margin above 1", {with_camera, run_dir, run_dir, "--overlap-margin", "2"}, {"--overlap-margin", "0 to 1"}},
+      {"margin not a number", {with_camera, run_dir, run_dir, "--min-margin", "nan"}, {"--min-margin", "'nan'"}},
+      {"floor without a value", {with_camera, run_dir, run_dir, "--floor"}, {"--floor needs a value"}},
+      {"unknown option", {with_camera, run_dir, run_dir, "--frobnicate"}, {"unknown option '--frobnicate'"}},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"fidelity"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    args.insert(args.begin() + 1, {"--out", fid});
+    EXPECT_EQ(run(args), kExitBadInput) << c.what << ": " << out_.str();
+    const std::string message = err_.str();
+    for (const auto& text : c.expect) EXPECT_NE(message.find(text), std::string::npos) << c.what << ": '" << text << "' not in: " << message;
+    EXPECT_EQ(std::count(message.begin(), message.end(), '\n'), 1) << c.what << ": " << message;
+    EXPECT_FALSE(fs::exists(fid)) << c.what << " left output behind";
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "fidelity")) << c.what;
+    EXPECT_FALSE(fs::exists(damaged / "fidelity")) << c.what;
+  }
+  EXPECT_EQ(run({"fidelity", "--help"}), kExitOk);
+  for (const char* option : {"--floor", "--every", "--scale", "--out", "--overlap-margin", "--min-margin", "--detail", "--popping", "--perturb 1e-6"})
+    EXPECT_NE(out_.str().find(option), std::string::npos) << option;
+  EXPECT_EQ(run({"--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("vdcloth fidelity"), std::string::npos);
+}
+
+// Gravity one part in a million stronger: the same first state, another second frame. The
+// perturbation is in summary.json and the checkpoint, and a resumption must keep it.
+TEST_F(CliTest, PerturbChangesTheRunAndAResumptionMustKeepIt) {
+  const std::string path = scene(", \"handles\": [{\"uv\": [[0, 1], [1, 1]]}]");
+  const fs::path plain = dir_ / "plain", perturbed = dir_ / "perturbed";
+  ASSERT_EQ(run({"run", path, "--out", plain.string(), "--frames", "2", "--threads", "1"}), kExitOk) << err_.str();
+  ASSERT_EQ(run({"run", path, "--out", perturbed.string(), "--frames", "1", "--threads", "1", "--perturb", "1e-6"}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find("gravity perturbed by 1e-06"), std::string::npos) << out_.str();
+  EXPECT_EQ(run({"run", path, "--out", perturbed.string(), "--frames", "2", "--threads", "1", "--resume"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("made with --perturb 1e-06, not 0; resume it with --perturb 1e-06"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(perturbed / "frames" / "cloth_s.0002.obj"));
+  ASSERT_EQ(run({"run", path, "--out", perturbed.string(), "--frames", "2", "--threads", "1", "--resume", "--perturb", "1e-6"}), kExitOk)
+      << err_.str();
+  EXPECT_EQ(read_file(perturbed / "frames" / "cloth_s.0000.obj"), read_file(plain / "frames" / "cloth_s.0000.obj"));
+  EXPECT_NE(read_file(perturbed / "frames" / "cloth_s.0002.obj"), read_file(plain / "frames" / "cloth_s.0002.obj"));
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(perturbed / "summary.json"))["perturbation"].get<double>(), 1e-6);
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(plain / "summary.json"))["perturbation"].get<double>(), 0.0);
+  // And the other way: an unperturbed run resumed with a perturbation.
+  EXPECT_EQ(run({"run", path, "--out", plain.string(), "--frames", "3", "--threads", "1", "--resume", "--perturb", "-1e-6"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("made with --perturb 0, not -1e-06"), std::string::npos) << err_.str();
+  EXPECT_EQ(run({"run", "--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("--perturb E"), std::string::npos) << out_.str();
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // Preview rendering: the PNG encoding checked against the published check values of its CRC and
 // Adler-32 and by decoding its stored blocks; the rasterizer against the analytic size of a
-// square's image and a z-buffer occlusion; the comparison against a known overlap.
+// square's image, a z-buffer occlusion and a tilted plane's depth and normal; the comparison
+// against a known overlap.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "io/png.hpp"
@@ -142,6 +144,36 @@ TEST(Rasterizer, ShadingIsSmoothAcrossAFold) {
   ASSERT_EQ(f.mesh[static_cast<std::size_t>(120 * 320 + 160)], 0);
   EXPECT_LE(std::abs(red(159) - red(160)), 12) << "left of the fold " << red(159) << ", right " << red(160);
   EXPECT_GT(red(130), red(175)) << "the face turned away is darker";
+}
+
+// A square turned 30 degrees about x (its normal tilted up towards +y), in either winding: at a
+// pixel, the depth is where the pixel's ray meets the plane, and the normal is the plane's, turned
+// to face the camera. The background has infinite depth and no normal.
+TEST(Rasterizer, DepthAndNormalBuffersHoldThePlaneSeenAtEachPixel) {
+  const Camera camera = test_camera();
+  const double tilt = M_PI / 6;
+  const Vec3 along_x(1, 0, 0), along_slope(0, std::cos(tilt), -std::sin(tilt)), plane_normal(0, std::sin(tilt), std::cos(tilt));
+  RenderMesh plane;
+  for (const Vec2& corner : {Vec2(-2, -2), Vec2(2, -2), Vec2(2, 2), Vec2(-2, 2)}) plane.positions.push_back(corner.x() * along_x + corner.y() * along_slope);
+  for (const bool reversed : {false, true}) {
+    plane.faces = reversed ? std::vector<std::array<int32_t, 3>>{{0, 2, 1}, {0, 3, 2}} : std::vector<std::array<int32_t, 3>>{{0, 1, 2}, {0, 2, 3}};
+    const RenderedFrame f = render(camera, {plane});
+    ASSERT_EQ(f.depth.size(), 320u * 240u);
+    ASSERT_EQ(f.normal.size(), 320u * 240u);
+    for (const auto& [x, y] : {std::pair{200, 80}, std::pair{100, 170}, std::pair{160, 120}}) {
+      // The camera looks down -z from (0, 0, 5) with x to the right and y up: the ray through the
+      // pixel's centre, scaled to advance 1 in depth.
+      const Vec3 ray((x + 0.5 - 160) / camera.focal_pixels(), -(y + 0.5 - 120) / camera.focal_pixels(), -1);
+      const double depth = -plane_normal.dot(camera.position) / plane_normal.dot(ray);
+      const auto i = static_cast<std::size_t>(y * 320 + x);
+      ASSERT_EQ(f.mesh[i], 0) << x << "," << y;
+      EXPECT_NEAR(f.depth[i], depth, 1e-9) << x << "," << y;
+      EXPECT_NEAR((f.normal[i] - plane_normal).norm(), 0, 1e-12) << x << "," << y << " reversed " << reversed;
+    }
+    EXPECT_EQ(f.mesh[0], -1);
+    EXPECT_EQ(f.depth[0], std::numeric_limits<double>::infinity());
+    EXPECT_EQ(f.normal[0], Vec3::Zero());
+  }
 }
 
 TEST(RenderComparison, IdenticalRendersMatchAndAShiftedSquareOverlapsAsExpected) {

@@ -1,0 +1,302 @@
+// `vdcloth fidelity`: parsing, checking the input before anything is written, drawing each
+// measured frame (and the frame before it, for popping) of every run, the tables and verdicts.
+#include "app/fidelity_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "app/cli.hpp"
+#include "app/run_frames.hpp"
+#include "core/error.hpp"
+#include "io/run_output.hpp"
+#include "render/compare.hpp"
+#include "render/fidelity.hpp"
+#include "scene/scene.hpp"
+
+namespace vdc {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kFidelityHelp =
+    "usage: vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [--floor PERTURBED_REFERENCE_DIR] [--every N]\n"
+    "                        [--scale S] [--out DIR] [--overlap-margin X] [--min-margin X] [--detail X] [--popping X]\n"
+    "\n"
+    "Measures how like REFERENCE_DIR (an adaptive run, say) RUN_DIR (a view run of the same scene)\n"
+    "looks through the scene's camera, at the frames all the runs given have meshes for: the overlap\n"
+    "of the cloth silhouettes (intersection over union, bodies hiding cloth), the wrinkle detail on\n"
+    "screen of each run (the mean angle in degrees between neighbouring cloth pixels' shading\n"
+    "normals) and the popping of each (the mean pixel change on cloth from the frame before, 0 to\n"
+    "255). With --floor, a run of the reference perturbed below any physical meaning (`vdcloth run\n"
+    "--perturb 1e-6`) is measured against the reference the same way: the chaos floor, what a\n"
+    "tiny perturbation already changes.\n"
+    "\n"
+    "Writes OUT/fidelity.csv (one row a frame) and OUT/fidelity_shots.csv (one row a shot between\n"
+    "the camera's cuts, and a last row `all`) and prints a verdict for each shot and for the whole\n"
+    "run: pass when\n"
+    "  overlap mean  >= floor overlap mean - X   (--overlap-margin, default 0.02)\n"
+    "  overlap min   >= floor overlap min - X    (--min-margin, default 0.05)\n"
+    "  detail ratio  >= X                        (--detail, default 0.9: run's mean over reference's)\n"
+    "  popping ratio <= X                        (--popping, default 1.2: run's mean over reference's)\n"
+    "The overlap is judged only with --floor. Exit status: 0 every verdict passes, 3 one fails,\n"
+    "2 bad usage or input (nothing written).\n"
+    "\n"
+    "options:\n"
+    "  --floor DIR           the reference run made again with `vdcloth run --perturb 1e-6`\n"
+    "  --every N             every Nth frame the runs have in common (default: 1, all)\n"
+    "  --scale S             image size relative to the camera's, 0.05 to 4 (default: 0.5)\n"
+    "  --out DIR             output directory (default: RUN_DIR/fidelity)\n"
+    "  --overlap-margin X    0 to 1 (default: 0.02)\n"
+    "  --min-margin X        0 to 1 (default: 0.05)\n"
+    "  --detail X            0 to 10 (default: 0.9)\n"
+    "  --popping X           0 to 100 (default: 1.2)\n";
+
+struct FidelityArgs {
+  std::string scene, run, reference, floor, out;
+  int every = 1;
+  double scale = 0.5;
+  FidelityTargets targets;
+};
+
+FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
+  FidelityArgs f;
+  std::vector<std::string> positional;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+      return args[++i];
+    };
+    if (a == "--floor" || a == "--out") {
+      const std::string& dir = value();
+      if (dir.empty()) throw UsageError(a + " needs a directory");
+      (a == "--floor" ? f.floor : f.out) = dir;
+    } else if (a == "--every") {
+      f.every = parse_positive_int(a, value());
+    } else if (a == "--scale") {
+      f.scale = parse_number(a, value(), 0.05, 4);
+    } else if (a == "--overlap-margin") {
+      f.targets.overlap_margin = parse_number(a, value(), 0, 1);
+    } else if (a == "--min-margin") {
+      f.targets.min_margin = parse_number(a, value(), 0, 1);
+    } else if (a == "--detail") {
+      f.targets.detail = parse_number(a, value(), 0, 10);
+    } else if (a == "--popping") {
+      f.targets.popping = parse_number(a, value(), 0, 100);
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option '" + a + "' for fidelity (try vdcloth fidelity --help)");
+    } else {
+      positional.push_back(a);
+    }
+  }
+  if (positional.size() != 3) throw UsageError("fidelity expects SCENE.json, RUN_DIR and REFERENCE_DIR (try vdcloth fidelity --help)");
+  f.scene = positional[0];
+  f.run = positional[1];
+  f.reference = positional[2];
+  if (f.out.empty()) f.out = f.run + "/fidelity";
+  return f;
+}
+
+// The runs at one frame, drawn in the order run, reference, floor (when given).
+using DrawnRuns = std::vector<DrawnFrame>;
+
+DrawnRuns draw_runs(const Scene& scene, const std::vector<std::map<int, FrameFiles>>& runs, int frame, double scale) {
+  const Camera camera = scene.camera->at(frame * scene.frame_time);
+  DrawnRuns drawn;
+  for (const auto& run : runs) drawn.push_back(draw_frame(camera, run.at(frame), scale));
+  return drawn;
+}
+
+// The shot of a frame: the number of cuts at times up to the frame's.
+int shot_of(const Scene& scene, int frame) {
+  return static_cast<int>(scene.camera->cuts_in(-std::numeric_limits<double>::infinity(), frame * scene.frame_time).size());
+}
+
+// The measures of one frame. `before`: the runs drawn at the frame before, null when that frame
+// is in another shot or not written by every run.
+FrameFidelity measure(const DrawnRuns& now, const DrawnRuns* before, double pixels_per_metre_at_unit_depth) {
+  FrameFidelity m;
+  // Overlap: the cloth silhouettes' intersection over union (compare_renders).
+  const RenderComparison c = compare_renders(now[0].pixels, now[0].cloth, now[1].pixels, now[1].cloth);
+  m.cloth_pixels_run = c.cloth_pixels_a;
+  m.cloth_pixels_reference = c.cloth_pixels_b;
+  m.overlap = c.cloth_iou;
+  auto detail = [&](std::size_t k) { return wrinkle_detail(now[k].pixels, now[k].cloth, pixels_per_metre_at_unit_depth); };
+  // Popping: the mean absolute pixel change on cloth from the frame before (compare_renders).
+  auto popping = [&](std::size_t k) {
+    return compare_renders((*before)[k].pixels, (*before)[k].cloth, now[k].pixels, now[k].cloth).mean_abs_diff;
+  };
+  m.detail_run = detail(0);
+  m.detail_reference = detail(1);
+  if (before) {
+    m.popping_run = popping(0);
+    m.popping_reference = popping(1);
+  }
+  if (now.size() > 2) {
+    m.floor_overlap = compare_renders(now[2].pixels, now[2].cloth, now[1].pixels, now[1].cloth).cloth_iou;
+    m.detail_floor = detail(2);
+    if (before) m.popping_floor = popping(2);
+  }
+  return m;
+}
+
+// A table's cell: empty when not measured.
+std::string cell(double x) {
+  if (std::isnan(x)) return "";
+  std::ostringstream s;
+  s << std::setprecision(6) << x;
+  return s.str();
+}
+
+std::string joined(const std::vector<std::string>& parts, const std::string& between) {
+  std::string s;
+  for (const std::string& p : parts) s += (s.empty() ? "" : between) + p;
+  return s;
+}
+
+const char* kFramesHeader =
+    "frame,time,shot,cloth_pixels_run,cloth_pixels_reference,overlap,floor_overlap,detail_run,detail_reference,detail_floor,"
+    "popping_run,popping_reference,popping_floor\n";
+
+void write_frame_row(std::ostream& csv, const FrameFidelity& m) {
+  csv << m.frame << "," << cell(m.time) << "," << m.shot << "," << m.cloth_pixels_run << "," << m.cloth_pixels_reference << ","
+      << cell(m.overlap) << "," << cell(m.floor_overlap) << "," << cell(m.detail_run) << "," << cell(m.detail_reference) << ","
+      << cell(m.detail_floor) << "," << cell(m.popping_run) << "," << cell(m.popping_reference) << "," << cell(m.popping_floor) << "\n";
+}
+
+const char* kShotsHeader =
+    "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
+    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed\n";
+
+void write_shot_row(std::ostream& csv, const ShotFidelity& s) {
+  csv << (s.shot < 0 ? "all" : std::to_string(s.shot)) << "," << s.first_frame << "," << s.last_frame << "," << s.frames << ","
+      << cell(s.overlap_mean) << "," << cell(s.overlap_min) << "," << cell(s.floor_overlap_mean) << "," << cell(s.floor_overlap_min) << ","
+      << cell(s.detail_run_mean) << "," << cell(s.detail_reference_mean) << "," << cell(s.detail_ratio) << "," << s.popping_pairs << ","
+      << cell(s.popping_run_mean) << "," << cell(s.popping_reference_mean) << "," << cell(s.popping_ratio) << ","
+      << (s.pass() ? "pass" : "fail") << "," << joined(s.failed, ";") << "\n";
+}
+
+std::string progress_line(const FrameFidelity& m) {
+  std::ostringstream o;
+  o << std::fixed << "vdcloth fidelity: frame " << m.frame << ", shot " << m.shot << ": overlap " << std::setprecision(3) << m.overlap;
+  if (!std::isnan(m.floor_overlap)) o << " (floor " << m.floor_overlap << ")";
+  o << ", detail " << std::setprecision(2) << m.detail_run << " / " << m.detail_reference << " deg";
+  if (!std::isnan(m.popping_run)) o << ", popping " << std::setprecision(1) << m.popping_run << " / " << m.popping_reference;
+  return o.str();
+}
+
+// e.g. "shot 2 (frames 75-149): overlap 0.952 mean / 0.930 min (floor 0.968 / 0.941), detail 97%
+// of reference, popping 1.05x: pass"
+std::string verdict_line(const ShotFidelity& s) {
+  std::ostringstream o;
+  o << std::fixed << (s.shot < 0 ? std::string("all") : "shot " + std::to_string(s.shot)) << " (frames " << s.first_frame << "-"
+    << s.last_frame << "): overlap " << std::setprecision(3) << s.overlap_mean << " mean / " << s.overlap_min << " min";
+  if (std::isnan(s.floor_overlap_mean)) o << " (no floor)";
+  else o << " (floor " << s.floor_overlap_mean << " / " << s.floor_overlap_min << ")";
+  o << ", detail ";
+  if (std::isinf(s.detail_ratio)) o << "where the reference has none";
+  else o << std::setprecision(0) << 100 * s.detail_ratio << "% of reference";
+  o << ", popping ";
+  if (std::isnan(s.popping_ratio)) o << "not measured (no consecutive frames)";
+  else if (std::isinf(s.popping_ratio)) o << "where the reference has none";
+  else o << std::setprecision(2) << s.popping_ratio << "x";
+  o << ": " << (s.pass() ? "pass" : "fail (" + joined(s.failed, ", ") + ")");
+  return o.str();
+}
+
+// Creates `dir`; returns the directories it had to make, deepest first.
+std::vector<fs::path> create_output_directory(const std::string& dir) {
+  std::vector<fs::path> made;
+  std::error_code ec;
+  for (fs::path p = fs::path(dir).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    made.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
+  return made;
+}
+
+}  // namespace
+
+int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
+  for (const std::string& a : args)
+    if (a == "--help" || a == "-h") {
+      out << kFidelityHelp;
+      return kExitOk;
+    }
+  const FidelityArgs f = parse_fidelity_args(args);
+  const Scene scene = load_scene(f.scene);
+  if (!scene.camera) throw InputError(f.scene, "camera", "the scene has no camera to measure through");
+  std::vector<std::string> dirs{f.run, f.reference};
+  if (!f.floor.empty()) dirs.push_back(f.floor);
+  std::vector<std::map<int, FrameFiles>> runs;
+  std::vector<const std::map<int, FrameFiles>*> listed;
+  for (const std::string& dir : dirs) runs.push_back(read_frame_files(dir));
+  for (const auto& run : runs) listed.push_back(&run);
+  const std::vector<int> common = frames_in_common(listed);
+  if (common.empty())
+    throw InputError(f.run, "", "no frame in common with " + joined(std::vector<std::string>(dirs.begin() + 1, dirs.end()), " and "));
+  std::vector<int> measured;
+  for (std::size_t i = 0; i < common.size(); i += static_cast<std::size_t>(f.every)) measured.push_back(common[i]);
+  const double pixels_per_metre = scene.camera->lens().focal_pixels() * f.scale;
+
+  // Everything given is valid: from here on only a mesh file that cannot be read (or results
+  // that cannot be written) stops the command, and then it takes back what it wrote.
+  const std::vector<fs::path> made = create_output_directory(f.out);
+  std::optional<PartialTable> frames_csv, shots_csv;
+  try {
+    frames_csv.emplace(f.out + "/fidelity.csv");
+    frames_csv->stream() << kFramesHeader;
+    std::vector<FrameFidelity> record;
+    // The runs at the last measured frame, kept as the frame before of the next one.
+    std::optional<int> kept_frame;
+    DrawnRuns kept;
+    for (const int frame : measured) {
+      DrawnRuns now = draw_runs(scene, runs, frame, f.scale);
+      const int shot = shot_of(scene, frame);
+      const bool has_before = std::binary_search(common.begin(), common.end(), frame - 1) && shot_of(scene, frame - 1) == shot;
+      DrawnRuns before;
+      if (has_before) before = kept_frame == frame - 1 ? std::move(kept) : draw_runs(scene, runs, frame - 1, f.scale);
+      FrameFidelity m = measure(now, has_before ? &before : nullptr, pixels_per_metre);
+      m.frame = frame;
+      m.time = frame * scene.frame_time;
+      m.shot = shot;
+      write_frame_row(frames_csv->stream(), m);
+      out << progress_line(m) << "\n" << std::flush;
+      record.push_back(m);
+      kept = std::move(now);
+      kept_frame = frame;
+    }
+    const std::vector<ShotFidelity> shots = summarise_shots(record, f.targets);
+    shots_csv.emplace(f.out + "/fidelity_shots.csv");
+    shots_csv->stream() << kShotsHeader;
+    bool pass = true;
+    for (const ShotFidelity& s : shots) {
+      write_shot_row(shots_csv->stream(), s);
+      pass = pass && s.pass();
+    }
+    frames_csv->finish();
+    shots_csv->finish();
+    for (const ShotFidelity& s : shots) out << "vdcloth fidelity: " << verdict_line(s) << "\n";
+    out << "vdcloth fidelity: " << record.size() << " frame(s) of " << f.run << " against " << f.reference;
+    if (!f.floor.empty()) out << " (floor " << f.floor << ")";
+    out << "; " << f.out << "/fidelity.csv, " << f.out << "/fidelity_shots.csv\n";
+    return pass ? kExitOk : kExitSimulationFailed;
+  } catch (const InputError&) {
+    if (frames_csv) frames_csv->discard();
+    if (shots_csv) shots_csv->discard();
+    std::error_code ec;
+    for (const fs::path& dir : made) fs::remove(dir, ec);  // only if empty
+    throw;
+  }
+}
+
+}  // namespace vdc

@@ -1,0 +1,72 @@
+// Drawing a run's written frames for render and fidelity, finding the frames runs share, and
+// writing tables under a temporary name.
+#include "app/run_frames.hpp"
+
+#include <filesystem>
+#include <iterator>
+
+#include "core/error.hpp"
+#include "io/obj.hpp"
+
+namespace vdc {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const Vec3 kClothPalette[] = {{0.80, 0.25, 0.22}, {0.93, 0.72, 0.20}, {0.22, 0.42, 0.78}, {0.30, 0.65, 0.38},
+                              {0.60, 0.35, 0.70}, {0.90, 0.50, 0.25}, {0.25, 0.70, 0.75}, {0.85, 0.40, 0.60}};
+
+}  // namespace
+
+DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scale) {
+  std::vector<RenderMesh> meshes;
+  DrawnFrame drawn;
+  std::size_t garments = 0;
+  for (const auto& [key, path] : files) {  // in name order
+    const bool cloth = key.rfind("cloth_", 0) == 0;
+    const MeshSource source = read_obj_source(path, false);
+    RenderMesh mesh;
+    mesh.positions = source.positions;
+    mesh.faces = position_triangles(source);
+    mesh.colour = cloth ? kClothPalette[garments++ % std::size(kClothPalette)] : Vec3(0.78, 0.74, 0.70);
+    meshes.push_back(std::move(mesh));
+    drawn.cloth.push_back(cloth);
+  }
+  drawn.pixels = render(camera, meshes, scale);
+  return drawn;
+}
+
+std::vector<int> frames_in_common(const std::vector<const std::map<int, FrameFiles>*>& runs) {
+  std::vector<int> common;
+  if (runs.empty()) return common;
+  for (const auto& [frame, files] : *runs.front()) {
+    bool everywhere = true;
+    for (const auto* run : runs) everywhere = everywhere && run->count(frame) > 0;
+    if (everywhere) common.push_back(frame);
+  }
+  return common;
+}
+
+PartialTable::PartialTable(std::string path) : path_(std::move(path)) {
+  std::error_code ec;
+  fs::remove(path_, ec);
+  stream_.open(path_ + ".partial");
+  if (!stream_) throw InputError(path_ + ".partial", "", "cannot write");
+}
+
+void PartialTable::finish() {
+  stream_.close();
+  if (stream_.fail()) throw InputError(path_ + ".partial", "", "cannot write");
+  std::error_code ec;
+  fs::rename(path_ + ".partial", path_, ec);
+  if (ec) throw InputError(path_, "", "cannot write: " + ec.message());
+}
+
+void PartialTable::discard() {
+  stream_.close();
+  std::error_code ec;
+  fs::remove(path_ + ".partial", ec);
+}
+
+}  // namespace vdc

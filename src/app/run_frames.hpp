@@ -1,0 +1,44 @@
+// A run's written frames as `vdcloth render` and `vdcloth fidelity` draw them: the frames
+// several runs have in common, one frame's meshes drawn through a camera with cloth told from
+// bodies, and tables written under a temporary name until complete.
+#pragma once
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/run_output.hpp"
+#include "render/rasterizer.hpp"
+
+namespace vdc {
+
+// A frame drawn: its pixels, and per mesh whether it is cloth (a garment) or a body.
+struct DrawnFrame {
+  RenderedFrame pixels;
+  std::vector<char> cloth;
+};
+
+// The frame's meshes through `camera` at `scale` times its image size; garments in colours given
+// in name order (the same garment has the same colour in every run of a scene), bodies grey.
+// Throws InputError naming a mesh file that cannot be read.
+DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scale);
+
+// The frames every one of `runs` has meshes for, in increasing order.
+std::vector<int> frames_in_common(const std::vector<const std::map<int, FrameFiles>*>& runs);
+
+// A table written to PATH.partial and renamed to PATH by finish(), so that a command stopped
+// part-way leaves no table that looks complete. Opening removes an earlier PATH; throws
+// InputError when the file cannot be written.
+class PartialTable {
+ public:
+  explicit PartialTable(std::string path);
+  std::ofstream& stream() { return stream_; }
+  void finish();   // closes and renames; InputError when it cannot
+  void discard();  // closes and removes PATH.partial
+
+ private:
+  std::string path_;
+  std::ofstream stream_;
+};
+
+}  // namespace vdc

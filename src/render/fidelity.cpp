@@ -1,0 +1,115 @@
+// The fidelity measures of one frame (wrinkle detail from the shading normals) and their
+// summaries over shots, judged against the targets.
+#include "render/fidelity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace vdc {
+
+namespace {
+
+// Neighbours further apart in depth than this many pixel footprints are on different surfaces
+// (a fold in front of the cloth behind it): a surface seen at up to atan(4) = 76 degrees from
+// facing the camera still counts as one.
+constexpr double kDiscontinuityFootprints = 4;
+
+ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames, const FidelityTargets& targets) {
+  ShotFidelity s;
+  s.shot = shot;
+  s.frames = static_cast<int>(frames.size());
+  s.first_frame = frames.front()->frame;
+  s.last_frame = frames.front()->frame;
+  s.overlap_min = std::numeric_limits<double>::infinity();
+  double overlap_sum = 0, floor_sum = 0, floor_min = std::numeric_limits<double>::infinity();
+  double detail_run = 0, detail_reference = 0, popping_run = 0, popping_reference = 0;
+  int floors = 0;
+  for (const FrameFidelity* f : frames) {
+    s.first_frame = std::min(s.first_frame, f->frame);
+    s.last_frame = std::max(s.last_frame, f->frame);
+    overlap_sum += f->overlap;
+    s.overlap_min = std::min(s.overlap_min, f->overlap);
+    if (!std::isnan(f->floor_overlap)) {
+      ++floors;
+      floor_sum += f->floor_overlap;
+      floor_min = std::min(floor_min, f->floor_overlap);
+    }
+    detail_run += f->detail_run;
+    detail_reference += f->detail_reference;
+    if (!std::isnan(f->popping_run) && !std::isnan(f->popping_reference)) {
+      ++s.popping_pairs;
+      popping_run += f->popping_run;
+      popping_reference += f->popping_reference;
+    }
+  }
+  s.overlap_mean = overlap_sum / s.frames;
+  s.detail_run_mean = detail_run / s.frames;
+  s.detail_reference_mean = detail_reference / s.frames;
+  s.detail_ratio = ratio_of_means(s.detail_run_mean, s.detail_reference_mean);
+  if (floors > 0) {
+    s.floor_overlap_mean = floor_sum / floors;
+    s.floor_overlap_min = floor_min;
+    if (s.overlap_mean < s.floor_overlap_mean - targets.overlap_margin) s.failed.push_back("overlap mean");
+    if (s.overlap_min < s.floor_overlap_min - targets.min_margin) s.failed.push_back("overlap min");
+  }
+  if (s.detail_ratio < targets.detail) s.failed.push_back("detail");
+  if (s.popping_pairs > 0) {
+    s.popping_run_mean = popping_run / s.popping_pairs;
+    s.popping_reference_mean = popping_reference / s.popping_pairs;
+    s.popping_ratio = ratio_of_means(s.popping_run_mean, s.popping_reference_mean);
+    if (s.popping_ratio > targets.popping) s.failed.push_back("popping");
+  }
+  return s;
+}
+
+}  // namespace
+
+// Mean angle between neighbouring cloth pixels' shading normals, each angle as atan2(|a x b|,
+// a . b), which keeps its digits for the small angles of gentle wrinkles where acos loses half.
+double wrinkle_detail(const RenderedFrame& frame, const std::vector<char>& cloth, double pixels_per_metre_at_unit_depth) {
+  const auto width = static_cast<std::size_t>(frame.image.width), height = static_cast<std::size_t>(frame.image.height);
+  if (frame.mesh.size() != width * height || frame.depth.size() != width * height || frame.normal.size() != width * height)
+    throw std::invalid_argument("wrinkle_detail: the frame's buffers are not one value a pixel");
+  auto is_cloth = [&](std::size_t i) {
+    const int32_t m = frame.mesh[i];
+    return m >= 0 && static_cast<std::size_t>(m) < cloth.size() && cloth[static_cast<std::size_t>(m)];
+  };
+  double sum = 0;
+  long pairs = 0;
+  auto add_pair = [&](std::size_t i, std::size_t j) {
+    if (frame.mesh[i] != frame.mesh[j] || !is_cloth(i)) return;
+    const double footprint = 0.5 * (frame.depth[i] + frame.depth[j]) / pixels_per_metre_at_unit_depth;
+    if (std::abs(frame.depth[i] - frame.depth[j]) > kDiscontinuityFootprints * footprint) return;
+    sum += std::atan2(frame.normal[i].cross(frame.normal[j]).norm(), frame.normal[i].dot(frame.normal[j]));
+    ++pairs;
+  };
+  for (std::size_t y = 0; y < height; ++y)
+    for (std::size_t x = 0; x < width; ++x) {
+      const std::size_t i = y * width + x;
+      if (x + 1 < width) add_pair(i, i + 1);
+      if (y + 1 < height) add_pair(i, i + width);
+    }
+  return pairs > 0 ? sum / static_cast<double>(pairs) * 180.0 / M_PI : 0.0;
+}
+
+double ratio_of_means(double run_mean, double reference_mean) {
+  if (reference_mean > 0) return run_mean / reference_mean;
+  return run_mean > 0 ? std::numeric_limits<double>::infinity() : 1.0;
+}
+
+std::vector<ShotFidelity> summarise_shots(const std::vector<FrameFidelity>& frames, const FidelityTargets& targets) {
+  std::map<int, std::vector<const FrameFidelity*>> by_shot;
+  std::vector<const FrameFidelity*> all;
+  for (const FrameFidelity& f : frames) {
+    by_shot[f.shot].push_back(&f);
+    all.push_back(&f);
+  }
+  std::vector<ShotFidelity> summaries;
+  for (const auto& [shot, members] : by_shot) summaries.push_back(summarise(shot, members, targets));
+  if (!all.empty()) summaries.push_back(summarise(-1, all, targets));
+  return summaries;
+}
+
+}  // namespace vdc

@@ -1,0 +1,72 @@
+// How like a reference a run looks through the shot camera: per frame, the overlap of the cloth
+// silhouettes, the on-screen wrinkle detail and the popping (image change from the frame
+// before) of each run; per shot and over the whole run, these summed up and judged against
+// targets set relative to the reference and to the chaos floor (the reference against a run of
+// it perturbed below any physical meaning).
+#pragma once
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "render/rasterizer.hpp"
+
+namespace vdc {
+
+inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
+
+// Mean angle in degrees between the shading normals of horizontally and vertically neighbouring
+// pixels that both show cloth of the same mesh and are not across a depth discontinuity (their
+// depths differ by more than 4 pixel footprints, a footprint being depth /
+// pixels_per_metre_at_unit_depth at their mean depth); 0 when no pair. It is how much the shading
+// varies across the cloth on screen: folds and wrinkles raise it, a coarse smooth mesh lowers it.
+// `cloth[m]` says whether mesh m is cloth; pixels_per_metre_at_unit_depth is the camera's
+// focal_pixels() times the render's scale.
+double wrinkle_detail(const RenderedFrame& frame, const std::vector<char>& cloth, double pixels_per_metre_at_unit_depth);
+
+// One measured frame. Floor values are kNotMeasured without a floor run; popping is kNotMeasured
+// on the first frame of a shot and where the frame before was not written by every run.
+struct FrameFidelity {
+  int frame = 0;
+  double time = 0;
+  int shot = 0;
+  int cloth_pixels_run = 0, cloth_pixels_reference = 0;
+  double overlap = 1;                    // cloth silhouette IoU, run against reference
+  double floor_overlap = kNotMeasured;   // the same, floor run against reference
+  double detail_run = 0, detail_reference = 0, detail_floor = kNotMeasured;  // wrinkle_detail, degrees
+  double popping_run = kNotMeasured, popping_reference = kNotMeasured, popping_floor = kNotMeasured;  // 0 to 255
+};
+
+// What a run must reach to look like its reference (`vdcloth fidelity`'s options).
+struct FidelityTargets {
+  double overlap_margin = 0.02;  // overlap mean >= floor overlap mean - this
+  double min_margin = 0.05;      // overlap min >= floor overlap min - this
+  double detail = 0.9;           // detail ratio >= this
+  double popping = 1.2;          // popping ratio <= this
+};
+
+// A shot's frames (or the whole run's) summed up and judged.
+struct ShotFidelity {
+  int shot = -1;  // -1: the whole run
+  int first_frame = 0, last_frame = 0, frames = 0;
+  double overlap_mean = 0, overlap_min = 0;
+  double floor_overlap_mean = kNotMeasured, floor_overlap_min = kNotMeasured;
+  double detail_run_mean = 0, detail_reference_mean = 0;
+  double detail_ratio = 1;  // detail_run_mean / detail_reference_mean: 1 for 0/0, +infinity for x/0
+  int popping_pairs = 0;    // frame pairs with popping measured in both runs
+  double popping_run_mean = kNotMeasured, popping_reference_mean = kNotMeasured;
+  // popping_run_mean / popping_reference_mean: 1 for 0/0, +infinity for x/0, kNotMeasured
+  // without pairs (then not judged).
+  double popping_ratio = kNotMeasured;
+  std::vector<std::string> failed;  // the targets missed: "overlap mean", "overlap min", "detail", "popping"
+  bool pass() const { return failed.empty(); }
+};
+
+// The record's frames summed up over each shot in shot order, then over the whole run (shot -1)
+// and judged against `targets`; overlap is judged only where floor overlaps were measured.
+std::vector<ShotFidelity> summarise_shots(const std::vector<FrameFidelity>& frames, const FidelityTargets& targets);
+
+// A run's mean over its reference's, as the summaries take it: 1 for 0/0 (alike), +infinity
+// for x/0 with x > 0.
+double ratio_of_means(double run_mean, double reference_mean);
+
+}  // namespace vdc

@@ -1,0 +1,212 @@
+// The fidelity measures: wrinkle detail against shapes whose shading normals are known (a flat
+// square, a pleated sheet, two flat pieces with a depth step between them), and the shot
+// summaries and their verdict against records made by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "render/fidelity.hpp"
+#include "render/rasterizer.hpp"
+
+namespace vdc {
+namespace {
+
+// At (0, 0, 5) looking down -z (x right, y up), 40 degrees, 64 x 48 pixels.
+Camera small_camera() { return Camera{.position = Vec3(0, 0, 5), .target = Vec3::Zero(), .fov_y_degrees = 40, .width = 64, .height = 48}; }
+
+// Horizontal and vertical neighbour pairs of a 64 x 48 image.
+constexpr double kAllPairs = 48 * 63 + 47 * 64;
+
+// A flat quad with its own four vertices: its pixels all get its normal exactly.
+void add_quad(RenderMesh& mesh, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const auto first = static_cast<int32_t>(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), {a, b, c, d});
+  mesh.faces.push_back({first, first + 1, first + 2});
+  mesh.faces.push_back({first, first + 2, first + 3});
+}
+
+double detail_of(const RenderedFrame& f, const std::vector<char>& cloth) {
+  return wrinkle_detail(f, cloth, small_camera().focal_pixels());
+}
+
+TEST(WrinkleDetail, AFlatSheetHasNone) {
+  RenderMesh square;
+  add_quad(square, {-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, 0});
+  const RenderedFrame f = render(small_camera(), {square});
+  ASSERT_GT(std::count(f.mesh.begin(), f.mesh.end(), 0), 100);
+  EXPECT_EQ(detail_of(f, {1}), 0.0);
+  // Tilted, it is still flat; and the background alone has no pairs.
+  RenderMesh tilted;
+  add_quad(tilted, {-0.5, -0.5, 0.3}, {0.5, -0.5, -0.3}, {0.5, 0.5, -0.3}, {-0.5, 0.5, 0.3});
+  EXPECT_NEAR(detail_of(render(small_camera(), {tilted}), {1}), 0.0, 1e-9);
+  EXPECT_EQ(detail_of(render(small_camera(), {}), {}), 0.0);
+}
+
+// Vertical pleats filling the whole image: flat strips 0.5 m wide, each turned 30 degrees about
+// the vertical, alternately towards +x and -x, so that neighbouring strips meet at a ridge at
+// 60 degrees (each strip has its own vertices: a sharp crease). Each row of pixels then has one
+// pair across each ridge in view, at 60 degrees, and every other pair is at 0: the mean is
+// rows x ridges x 60 degrees over all horizontal and vertical pairs.
+TEST(WrinkleDetail, APleatedSheetGivesTheRidgeAnglesOverAllPairs) {
+  const Camera camera = small_camera();
+  const double alpha = M_PI / 6, width = 0.5, depth = width * std::tan(alpha);
+  RenderMesh pleats;
+  int ridges_in_view = 0;
+  for (int k = 0; k < 14; ++k) {
+    const double x0 = -3.4 + k * width, x1 = x0 + width;
+    const double z0 = k % 2 == 0 ? 0 : -depth, z1 = k % 2 == 0 ? -depth : 0;
+    add_quad(pleats, {x0, -3, z0}, {x1, -3, z1}, {x1, 3, z1}, {x0, 3, z0});
+    if (k == 0) continue;
+    // The ridge at x0 is a vertical line on screen; between the centres of the first and last
+    // pixel of a row it makes one pair across it.
+    const double ridge = camera.project(Vec3(x0, 0, z0)).x();
+    ASSERT_GT(std::abs(ridge - std::floor(ridge) - 0.5), 1e-3) << "ridge " << k << " on a pixel centre";
+    ridges_in_view += ridge > 0.5 && ridge < 63.5;
+  }
+  ASSERT_LT(camera.project(Vec3(-3.4, 0, 0)).x(), 0);
+  ASSERT_GT(camera.project(Vec3(-3.4 + 14 * width, 0, 0)).x(), 64);
+  ASSERT_GE(ridges_in_view, 8);
+  const RenderedFrame f = render(camera, {pleats});
+  ASSERT_EQ(std::count(f.mesh.begin(), f.mesh.end(), 0), 64 * 48) << "the pleats fill the image";
+  EXPECT_NEAR(detail_of(f, {1}), 48 * ridges_in_view * 60.0 / kAllPairs, 1e-9);
+}
+
+// Two flat pieces of one mesh meeting on the same vertical line of the screen, the left facing
+// the camera, the right turned 40 degrees, the right one `step` metres further away. Only with a
+// step under 4 pixel footprints (7.6 cm a footprint at 5 m here) do the pairs across the line
+// count: one a row, at 40 degrees.
+RenderedFrame step_scene(double step, bool one_mesh) {
+  const Camera camera = small_camera();
+  const double beta = 40 * M_PI / 180, edge = 0.1;  // the line, at x = 0.1 on the near piece
+  const double far_edge = edge * (5 + step) / 5;   // the same line on screen at the far piece's depth
+  RenderMesh near, far;
+  add_quad(near, {-4, -10, 0}, {edge, -10, 0}, {edge, 10, 0}, {-4, 10, 0});
+  const Vec3 run(std::cos(beta), 0, -std::sin(beta));
+  const Vec3 a(far_edge, -10, -step), b(far_edge, 10, -step);
+  add_quad(one_mesh ? near : far, a, a + 8 * run, b + 8 * run, b);
+  return render(camera, one_mesh ? std::vector<RenderMesh>{near} : std::vector<RenderMesh>{near, far});
+}
+
+TEST(WrinkleDetail, PairsAcrossADepthStepOrAnotherMeshDoNotCount) {
+  const RenderedFrame joined = step_scene(0.01, true);
+  ASSERT_EQ(std::count(joined.mesh.begin(), joined.mesh.end(), 0), 64 * 48);
+  EXPECT_NEAR(detail_of(joined, {1}), 48 * 40.0 / kAllPairs, 1e-9);
+  EXPECT_NEAR(detail_of(step_scene(1.0, true), {1}), 0.0, 1e-9);  // a step of 13 footprints
+  EXPECT_NEAR(detail_of(step_scene(0.01, false), {1, 1}), 0.0, 1e-9);
+  EXPECT_EQ(detail_of(joined, {0}), 0.0);  // not cloth
+}
+
+// Five frames in two shots; popping is measured from the second frame of each shot on.
+std::vector<FrameFidelity> two_shots(bool with_floor) {
+  const double none = kNotMeasured;
+  std::vector<FrameFidelity> r(5);
+  const double overlap[] = {0.95, 0.90, 0.85, 0.99, 0.97}, floor[] = {0.97, 0.96, 0.95, 0.99, 0.98};
+  const double detail_run[] = {2, 2, 2, 0, 0}, detail_reference[] = {2.5, 2.5, 2.5, 0, 0};
+  const double popping_run[] = {none, 3, 5, none, 2}, popping_reference[] = {none, 4, 4, none, 0};
+  for (int k = 0; k < 5; ++k) {
+    FrameFidelity& f = r[static_cast<std::size_t>(k)];
+    f.frame = 10 + k;
+    f.shot = k < 3 ? 0 : 1;
+    f.overlap = overlap[k];
+    f.floor_overlap = with_floor ? floor[k] : none;
+    f.detail_run = detail_run[k];
+    f.detail_reference = detail_reference[k];
+    f.popping_run = popping_run[k];
+    f.popping_reference = popping_reference[k];
+  }
+  return r;
+}
+
+TEST(FidelitySummary, ShotsAndTheWholeRunAreSummedAndJudged) {
+  const std::vector<ShotFidelity> s = summarise_shots(two_shots(true), FidelityTargets{});
+  ASSERT_EQ(s.size(), 3u);
+  // Shot 0: overlap 0.90 mean / 0.85 min against a floor of 0.96 / 0.95, both beyond their
+  // margins; detail 2 / 2.5 = 0.8 < 0.9; popping (3 + 5) / (4 + 4) = 1.
+  EXPECT_EQ(s[0].shot, 0);
+  EXPECT_EQ(s[0].first_frame, 10);
+  EXPECT_EQ(s[0].last_frame, 12);
+  EXPECT_EQ(s[0].frames, 3);
+  EXPECT_NEAR(s[0].overlap_mean, 0.90, 1e-12);
+  EXPECT_EQ(s[0].overlap_min, 0.85);
+  EXPECT_NEAR(s[0].floor_overlap_mean, 0.96, 1e-12);
+  EXPECT_EQ(s[0].floor_overlap_min, 0.95);
+  EXPECT_NEAR(s[0].detail_ratio, 0.8, 1e-12);
+  EXPECT_EQ(s[0].popping_pairs, 2);
+  EXPECT_EQ(s[0].popping_ratio, 1.0);
+  EXPECT_EQ(s[0].failed, (std::vector<std::string>{"overlap mean", "overlap min", "detail"}));
+  EXPECT_FALSE(s[0].pass());
+  // Shot 1: overlap 0.98 / 0.97 against 0.985 / 0.98, within the margins; no detail in either
+  // (0 / 0: alike); popping where the reference has none (2 / 0: infinitely more).
+  EXPECT_EQ(s[1].shot, 1);
+  EXPECT_EQ(s[1].first_frame, 13);
+  EXPECT_EQ(s[1].last_frame, 14);
+  EXPECT_NEAR(s[1].overlap_mean, 0.98, 1e-12);
+  EXPECT_EQ(s[1].detail_ratio, 1.0);
+  EXPECT_EQ(s[1].popping_pairs, 1);
+  EXPECT_EQ(s[1].popping_ratio, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(s[1].failed, (std::vector<std::string>{"popping"}));
+  // The whole run: overlap 4.66 / 5, min 0.85; floor 4.85 / 5, min 0.95; detail 6 / 7.5;
+  // popping (3 + 5 + 2) / (4 + 4 + 0).
+  EXPECT_EQ(s[2].shot, -1);
+  EXPECT_EQ(s[2].first_frame, 10);
+  EXPECT_EQ(s[2].last_frame, 14);
+  EXPECT_EQ(s[2].frames, 5);
+  EXPECT_NEAR(s[2].overlap_mean, 0.932, 1e-12);
+  EXPECT_NEAR(s[2].floor_overlap_mean, 0.97, 1e-12);
+  EXPECT_NEAR(s[2].detail_ratio, 0.8, 1e-12);
+  EXPECT_EQ(s[2].popping_pairs, 3);
+  EXPECT_NEAR(s[2].popping_ratio, 1.25, 1e-12);
+  EXPECT_EQ(s[2].failed, (std::vector<std::string>{"overlap mean", "overlap min", "detail", "popping"}));
+}
+
+TEST(FidelitySummary, TargetsMoveTheVerdict) {
+  FidelityTargets lenient;
+  lenient.overlap_margin = 0.0625;  // 0.90 >= 0.96 - 0.0625
+  lenient.min_margin = 0.125;       // 0.85 >= 0.95 - 0.125
+  lenient.detail = 0.75;            // 0.8 >= 0.75
+  const std::vector<ShotFidelity> s = summarise_shots(two_shots(true), lenient);
+  EXPECT_TRUE(s[0].pass()) << s[0].failed.size();
+  EXPECT_EQ(s[1].failed, (std::vector<std::string>{"popping"}));  // infinite whatever the target
+  EXPECT_EQ(s[2].failed, (std::vector<std::string>{"popping"}));  // 1.25 > 1.2
+  lenient.popping = 1.3;
+  EXPECT_TRUE(summarise_shots(two_shots(true), lenient)[2].pass());
+}
+
+TEST(FidelitySummary, WithoutAFloorTheOverlapIsReportedButNotJudged) {
+  const std::vector<ShotFidelity> s = summarise_shots(two_shots(false), FidelityTargets{});
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_NEAR(s[0].overlap_mean, 0.90, 1e-12);
+  EXPECT_TRUE(std::isnan(s[0].floor_overlap_mean));
+  EXPECT_TRUE(std::isnan(s[0].floor_overlap_min));
+  EXPECT_EQ(s[0].failed, (std::vector<std::string>{"detail"}));
+}
+
+TEST(FidelitySummary, PoppingWithoutPairsIsNotJudgedAndStillnessIsAlike) {
+  std::vector<FrameFidelity> one(1);
+  one[0].detail_run = one[0].detail_reference = 3;
+  std::vector<ShotFidelity> s = summarise_shots(one, FidelityTargets{});
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].popping_pairs, 0);
+  EXPECT_TRUE(std::isnan(s[0].popping_ratio));
+  EXPECT_TRUE(s[0].pass());
+  // Two frames where nothing moves in either run: 0 / 0.
+  std::vector<FrameFidelity> still(2);
+  still[1].frame = 1;
+  still[1].popping_run = still[1].popping_reference = 0;
+  s = summarise_shots(still, FidelityTargets{});
+  EXPECT_EQ(s[0].popping_ratio, 1.0);
+  EXPECT_EQ(s[0].detail_ratio, 1.0);
+  EXPECT_TRUE(s[0].pass());
+  EXPECT_TRUE(summarise_shots({}, FidelityTargets{}).empty());
+}
+
+TEST(FidelitySummary, RatioOfMeans) {
+  EXPECT_EQ(ratio_of_means(3, 4), 0.75);
+  EXPECT_EQ(ratio_of_means(0, 0), 1.0);
+  EXPECT_EQ(ratio_of_means(2, 0), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(ratio_of_means(0, 2), 0.0);
+}
+
+}  // namespace
+}  // namespace vdc
