@@ -19,9 +19,10 @@ int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& mate
   model.num_nodes += mesh.num_nodes();
   model.node_mass.resize(static_cast<std::size_t>(model.num_nodes), 0.0);
   const MembraneStiffness k = material.membrane();
+  const auto* compression = mesh.face_attrs().has(kCompressionAttr) ? &mesh.face_attrs().get<double>(kCompressionAttr) : nullptr;
   for (FaceId f : mesh.faces()) {
     const auto& vs = mesh.face_verts(f);
-    MembraneElement m = make_membrane_element(mesh.u(vs[0]), mesh.u(vs[1]), mesh.u(vs[2]), k);
+    MembraneElement m = make_membrane_element(mesh.u(vs[0]), mesh.u(vs[1]), mesh.u(vs[2]), k, compression ? (*compression)[f] : 1.0);
     std::array<int32_t, 3> nodes{};
     for (int i = 0; i < 3; ++i) {
       nodes[static_cast<std::size_t>(i)] = offset + mesh.face_node(f, i).idx;
@@ -46,6 +47,12 @@ int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& mate
     model.bends.push_back(b);
   }
   return offset;
+}
+
+void update_compression(ClothModel& model, const Mesh& mesh, std::size_t first_face) {
+  const auto* compression = mesh.face_attrs().has(kCompressionAttr) ? &mesh.face_attrs().get<double>(kCompressionAttr) : nullptr;
+  std::size_t i = first_face;
+  for (FaceId f : mesh.faces()) model.membranes.at(i++).compression = compression ? (*compression)[f] : 1.0;
 }
 
 void set_rest_angles_from_world(Mesh& mesh) {

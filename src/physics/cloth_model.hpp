@@ -23,8 +23,17 @@ struct ClothModel {
 // Name of the optional edge attribute (double) holding bending rest angles; absent means flat.
 inline constexpr const char* kRestAngleAttr = "rest_angle";
 
+// Name of the optional face attribute (double) holding each face's membrane `compression` factor
+// (membrane.hpp: the stiffness left against warp and weft compression in an element too coarse
+// for its wrinkles); absent means 1, the plain material.
+inline constexpr const char* kCompressionAttr = "compression";
+
 // Appends a compact mesh's elements; its node i becomes model node offset + i. Returns the offset.
 int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& material);
+
+// Sets the membranes' compression factors of the garment whose faces start at model face
+// `first_face` from its mesh's kCompressionAttr (1 where absent), without rebuilding anything.
+void update_compression(ClothModel& model, const Mesh& mesh, std::size_t first_face);
 
 // Sets the edge attribute kRestAngleAttr to the current dihedral angles (a garment whose rest
 // shape is its initial world shape).

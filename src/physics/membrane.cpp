@@ -43,8 +43,10 @@ MatN<9> hessian_with(const Mat32& f, const Mat2& s_geo, const MembraneElement& m
 
 }  // namespace
 
-MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k) {
+MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k,
+                                      double compression) {
   MembraneElement m;
+  m.compression = compression;
   Mat2 du;
   du.col(0) = u1 - u0;
   du.col(1) = u2 - u0;
@@ -71,11 +73,44 @@ Mat2 membrane_stress(const Mat2& e, const MembraneStiffness& k) {
   return s;
 }
 
-double membrane_energy(const TriStencil& x, const MembraneElement& m) {
-  return m.area * energy_density(green_strain(deformation_gradient(x, m)), m.k);
+namespace {
+
+// The strain psi sees: compressive warp and weft strains scaled by the element's `compression`
+// (piecewise linear, so within each piece psi is the plain energy of the scaled strain), with
+// the slopes of that scaling on E11 and E22.
+struct SeenStrain {
+  Mat2 e;
+  Vec2 slope;
+};
+
+SeenStrain seen_strain(const Mat2& e, double compression) {
+  SeenStrain s{e, Vec2(1, 1)};
+  for (int i = 0; i < 2; ++i)
+    if (e(i, i) < 0 && compression < 1) {
+      s.e(i, i) = compression * e(i, i);
+      s.slope[i] = compression;
+    }
+  return s;
 }
 
-namespace {
+// dpsi/dE: the plain stress of the seen strain, its warp and weft rows scaled by their slopes.
+Mat2 seen_stress(const SeenStrain& s, const MembraneStiffness& k) {
+  Mat2 out = membrane_stress(s.e, k);
+  out(0, 0) *= s.slope[0];
+  out(1, 1) *= s.slope[1];
+  return out;
+}
+
+// The element whose plain stress increments are those of the scaled energy: dS = C' dE with
+// c11' = a1^2 c11, c12' = a1 a2 c12, c22' = a2^2 c22 (a the slopes).
+MembraneElement tangent_element(const MembraneElement& m, const Vec2& slope) {
+  MembraneElement t = m;
+  t.k.c11 *= slope[0] * slope[0];
+  t.k.c12 *= slope[0] * slope[1];
+  t.k.c22 *= slope[1] * slope[1];
+  return t;
+}
+
 // Gradient of A psi: node a gets A P g_a with P = F S the first Piola-Kirchhoff stress.
 VecN<9> nodal_gradient(const Mat32& f, const Mat2& s, const MembraneElement& m) {
   const Mat32 p = f * s;
@@ -84,31 +119,38 @@ VecN<9> nodal_gradient(const Mat32& f, const Mat2& s, const MembraneElement& m) 
   for (int a = 0; a < 3; ++a) out.segment<3>(3 * a) = m.area * p * g[static_cast<std::size_t>(a)];
   return out;
 }
+
 }  // namespace
+
+double membrane_energy(const TriStencil& x, const MembraneElement& m) {
+  return m.area * energy_density(seen_strain(green_strain(deformation_gradient(x, m)), m.compression).e, m.k);
+}
 
 VecN<9> membrane_gradient(const TriStencil& x, const MembraneElement& m) {
   const Mat32 f = deformation_gradient(x, m);
-  return nodal_gradient(f, membrane_stress(green_strain(f), m.k), m);
+  return nodal_gradient(f, seen_stress(seen_strain(green_strain(f), m.compression), m.k), m);
 }
 
 MatN<9> membrane_hessian(const TriStencil& x, const MembraneElement& m) {
-  Mat32 f = deformation_gradient(x, m);
-  return hessian_with(f, membrane_stress(green_strain(f), m.k), m);
+  const Mat32 f = deformation_gradient(x, m);
+  const SeenStrain e = seen_strain(green_strain(f), m.compression);
+  return hessian_with(f, seen_stress(e, m.k), tangent_element(m, e.slope));
 }
 
 MatN<9> membrane_hessian_psd(const TriStencil& x, const MembraneElement& m) {
-  Mat32 f = deformation_gradient(x, m);
-  return hessian_with(f, clamp_negative(membrane_stress(green_strain(f), m.k)), m);
+  const Mat32 f = deformation_gradient(x, m);
+  const SeenStrain e = seen_strain(green_strain(f), m.compression);
+  return hessian_with(f, clamp_negative(seen_stress(e, m.k)), tangent_element(m, e.slope));
 }
 
 MembraneEval membrane_eval(const TriStencil& x, const MembraneElement& m) {
-  Mat32 f = deformation_gradient(x, m);
-  Mat2 e = green_strain(f);
-  Mat2 s = membrane_stress(e, m.k);
+  const Mat32 f = deformation_gradient(x, m);
+  const SeenStrain e = seen_strain(green_strain(f), m.compression);
+  const Mat2 s = seen_stress(e, m.k);
   MembraneEval r;
-  r.energy = m.area * energy_density(e, m.k);
+  r.energy = m.area * energy_density(e.e, m.k);
   r.gradient = nodal_gradient(f, s, m);
-  r.hessian = hessian_with(f, clamp_negative(s), m);
+  r.hessian = hessian_with(f, clamp_negative(s), tangent_element(m, e.slope));
   return r;
 }
 

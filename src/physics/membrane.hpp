@@ -1,6 +1,15 @@
 // Constant-strain triangle membrane on Green strain with an orthotropic (warp, weft, shear)
 // St. Venant-Kirchhoff energy: psi = 1/2 (c11 E11^2 + 2 c12 E11 E22 + c22 E22^2 + c33 (2 E12)^2),
 // W = A psi, F = Dx Du^-1 (Narain et al. 2012 section 3; Volino et al. 2009 for the strain model).
+//
+// An element coarser than the wrinkles its cloth would form cannot buckle into them: along warp
+// and weft it would resist compression with the full stretch stiffness, where the fine cloth
+// folds at almost no cost, and a coarse region would hold its shape like a stiff shell (membrane
+// locking). `compression` < 1 models those unresolved buckles: a compressive warp or weft
+// strain E counts as compression * E in psi, so the element keeps its full response in tension
+// and shear and carries compression^2 of the stiffness against compression (the ratio of the
+// plate buckling stresses, which fall as 1 / wavelength^2, at a resolution compression times the
+// element's). 1 is the plain material.
 #pragma once
 #include <array>
 
@@ -17,11 +26,13 @@ struct MembraneElement {
   Mat2 du_inv = Mat2::Identity();  // inverse of [u1 - u0, u2 - u0]
   double area = 0;                  // rest (material-space) area
   MembraneStiffness k;
+  double compression = 1;           // in (0, 1]: see above
 };
 
 using TriStencil = std::array<Vec3, 3>;
 
-MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k);
+MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k,
+                                      double compression = 1);
 
 Mat32 deformation_gradient(const TriStencil& x, const MembraneElement& m);
 Mat2 green_strain(const Mat32& f);

@@ -66,6 +66,16 @@ Mat2 tensor_max(const Mat2& a, const Mat2& b) {
   return q * l.asDiagonal() * q.transpose();
 }
 
+double metric_ratio(const Mat2& m, const Mat2& in) {
+  Eigen::SelfAdjointEigenSolver<Mat2> eig;
+  eig.computeDirect(0.5 * (in + in.transpose()));
+  const Vec2 inv_sqrt = eig.eigenvalues().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const Mat2 w = eig.eigenvectors() * inv_sqrt.asDiagonal() * eig.eigenvectors().transpose();
+  Eigen::SelfAdjointEigenSolver<Mat2> r;
+  r.computeDirect(0.5 * (w * m * w + (w * m * w).transpose()));
+  return r.eigenvalues().maxCoeff();
+}
+
 Mat2 obstacle_metric(const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) {
   Mat2 o = Mat2::Zero();
   for (int v = 0; v < 3; ++v) {
@@ -81,20 +91,31 @@ Mat2 obstacle_metric(const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane
   return o / 3.0;
 }
 
-Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& normals, const SizingParams& p,
-                           const std::vector<ObstaclePlane>& planes) {
+SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec3>& normals, const SizingParams& p) {
   auto at = [&](const std::vector<Vec3>& v, int i) { return v[static_cast<std::size_t>(mesh.face_node(f, i).idx)]; };
   const NodeId n0 = mesh.face_node(f, 0), n1 = mesh.face_node(f, 1), n2 = mesh.face_node(f, 2);
   const Mat32 dn = material_gradient(mesh, f, at(normals, 0), at(normals, 1), at(normals, 2));
   const Mat32 dv = material_gradient(mesh, f, mesh.v(n0), mesh.v(n1), mesh.v(n2));
   const Mat32 dx = material_gradient(mesh, f, mesh.x(n0), mesh.x(n1), mesh.x(n2));
   const Mat2 s2 = dn.transpose() * dn;
-  const Mat2 curvature = s2 / (p.refine_angle * p.refine_angle);
-  const Mat2 velocity = dv.transpose() * dv / (p.refine_velocity * p.refine_velocity);
-  const Mat2 compression = compression_metric(dx.transpose() * dx - Mat2::Identity(), s2, p.refine_compression);
-  Mat2 m = tensor_max(tensor_max(curvature, velocity), compression);
+  return {s2 / (p.refine_angle * p.refine_angle), dv.transpose() * dv / (p.refine_velocity * p.refine_velocity),
+          compression_metric(dx.transpose() * dx - Mat2::Identity(), s2, p.refine_compression)};
+}
+
+Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p) { return clamp_sizing(tensor_max(c.velocity, c.compression), p); }
+
+namespace {
+// The largest of a face's criteria, obstacle proximity included.
+Mat2 largest_criterion(const SizingCriteria& c, const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) {
+  Mat2 m = tensor_max(tensor_max(c.curvature, c.velocity), c.compression);
   if (!planes.empty()) m = tensor_max(m, obstacle_metric(mesh, f, planes));
   return m;
+}
+}  // namespace
+
+Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& normals, const SizingParams& p,
+                           const std::vector<ObstaclePlane>& planes) {
+  return largest_criterion(sizing_criteria(mesh, f, normals, p), mesh, f, planes);
 }
 
 Mat2 clamp_sizing(const Mat2& m, const SizingParams& p) {
@@ -110,16 +131,24 @@ Mat2 clamp_sizing(const Mat2& m, const SizingParams& p) {
 void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier, const std::vector<ObstaclePlane>& planes) {
   auto& face = mesh.face_attrs().get_or_add<Mat2>(kFaceSizingAttr, Mat2::Zero());
   const std::vector<Vec3> normals = node_normals(mesh);
-  for (FaceId f : mesh.faces()) face[f] = clamp_sizing(face_sizing_unclamped(mesh, f, normals, p, planes), p);
+  std::vector<Mat2> motion(modifier ? static_cast<std::size_t>(mesh.face_capacity()) : 0, Mat2::Zero());
+  for (FaceId f : mesh.faces()) {
+    const SizingCriteria c = sizing_criteria(mesh, f, normals, p);
+    face[f] = clamp_sizing(largest_criterion(c, mesh, f, planes), p);
+    if (modifier) motion[static_cast<std::size_t>(f.idx)] = motion_sizing(c, p);
+  }
   if (modifier) {
     const std::vector<Mat2> before = face.raw();
-    modifier->modify(mesh, face);
+    modifier->modify(mesh, motion, face);
     // A modifier trades visual detail, not collision safety: what it changed stays within
     // size_max, where the obstacle planes are searched, and keeps the obstacle-proximity tensor,
     // so a coarsened garment cannot cut into the body it hangs on.
-    for (FaceId f : mesh.faces())
-      if (face[f] != before[static_cast<std::size_t>(f.idx)])
-        face[f] = clamp_sizing(planes.empty() ? face[f] : tensor_max(face[f], obstacle_metric(mesh, f, planes)), p);
+    auto& coarsening = mesh.face_attrs().get_or_add<double>(kCoarseningAttr, 1.0);
+    for (FaceId f : mesh.faces()) {
+      const Mat2& physical = before[static_cast<std::size_t>(f.idx)];
+      if (face[f] != physical) face[f] = clamp_sizing(planes.empty() ? face[f] : tensor_max(face[f], obstacle_metric(mesh, f, planes)), p);
+      coarsening[f] = face[f] == physical ? 1.0 : metric_ratio(physical, face[f]);
+    }
   }
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());
   for (VertId v : mesh.verts()) {

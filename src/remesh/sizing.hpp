@@ -26,13 +26,29 @@ struct ObstaclePlane {
 
 // Face attribute holding the face tensors of the last compute_sizing.
 inline constexpr const char* kFaceSizingAttr = "face_sizing";
+// Face attribute (double) written by compute_sizing when a modifier changed the field: how much
+// coarser than the physical criteria ask the face may be, as the largest eigenvalue of the
+// physical tensor measured in the final one (the square of the length ratio; 1 or less where
+// the modifier did not coarsen).
+inline constexpr const char* kCoarseningAttr = "coarsening";
 
 class FaceSizingModifier {
  public:
   virtual ~FaceSizingModifier() = default;
-  // Called with the clamped physical tensors; may rewrite them.
-  virtual void modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing) const = 0;
+  // Called with the clamped physical tensors, which it may rewrite, and, by face index, the
+  // clamped tensors of the criteria that resolve the cloth's motion (velocity and compression,
+  // see motion_sizing), which a modifier trading visual detail keeps.
+  virtual void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const = 0;
 };
+
+// The criteria of one face (Narain et al. 2012, section 5), unclamped: curvature resolves the
+// shape, velocity and compression (the buckles compression would form) the motion.
+struct SizingCriteria {
+  Mat2 curvature, velocity, compression;
+};
+SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec3>& node_normals, const SizingParams& p);
+// The clamped tensor of the motion criteria alone: tensor_max of velocity and compression.
+Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p);
 
 // The physical tensor of one face before clamping: the largest of the criteria. `planes`, by
 // node index, may be empty (no obstacles).
@@ -49,9 +65,12 @@ Mat2 clamp_sizing(const Mat2& m, const SizingParams& p);
 // forms along each axis (exact when they share eigenvectors, and never below either along
 // those axes).
 Mat2 tensor_max(const Mat2& a, const Mat2& b);
+// The largest eigenvalue of m measured in the metric `in` (of in^-1/2 m in^-1/2): how many times
+// longer, squared, an edge `in` allows is than the longest m allows, in the worst direction.
+double metric_ratio(const Mat2& m, const Mat2& in);
 
-// Computes face tensors (kFaceSizingAttr), lets `modifier` change them, and averages them onto
-// verts by material area (kSizingAttr, read by remesh()).
+// Computes face tensors (kFaceSizingAttr), lets `modifier` change them (then also writing
+// kCoarseningAttr), and averages them onto verts by material area (kSizingAttr, read by remesh()).
 void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier = nullptr,
                     const std::vector<ObstaclePlane>& planes = {});
 

@@ -335,7 +335,7 @@ CameraPath parse_camera(const JsonValue& j) {
 
 // The `view` block: parameters of view-dependent sizing.
 ViewParams parse_view(const JsonValue& j) {
-  j.only_keys({"v_back", "v_out", "margin", "anticipation", "l_min", "l_max", "silhouette_threshold"});
+  j.only_keys({"v_back", "v_out", "margin", "anticipation", "l_min", "l_max", "silhouette_threshold", "settle"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -347,6 +347,7 @@ ViewParams parse_view(const JsonValue& j) {
   p.l_max = j.non_negative_or("l_max", p.l_max);
   if (p.l_max > 0 && p.l_max < p.l_min) j.at("l_max").fail("must be 0 (no ceiling) or at least l_min");
   p.silhouette_threshold = j.positive_or("silhouette_threshold", p.silhouette_threshold);
+  p.settle = j.non_negative_or("settle", p.settle);
   return p;
 }
 

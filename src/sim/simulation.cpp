@@ -166,6 +166,13 @@ void Simulation::remesh_garments(FrameStats& stats) {
   // An unchanged mesh keeps its system (elements, pattern, symbolic factorization) and collider.
   const bool changed = stats.splits + stats.flips + stats.collapses > 0;
   if (changed) rebuild();
+  else if (options_.mode == SimMode::View) {
+    std::size_t first_face = 0;
+    for (const auto& g : scene_.garments) {
+      update_compression(model_, g.mesh, first_face);
+      first_face += static_cast<std::size_t>(g.mesh.num_faces());
+    }
+  }
   stats.remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const UntangleReport remeshed = untangle_cloth(stats);
   if (remeshed.remaining > 0 && changed) keep_fewer_crossings(std::move(started_with), remeshed.remaining, stats);
@@ -190,6 +197,14 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
       for (FaceId f : mesh.faces()) factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
     }
     compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
+    if (views[gi]) {
+      // A face the camera lets be H / h times longer than its physics asks (coarsening is the
+      // square of that) cannot form the wrinkles of size h: its compression factor is h / H
+      // (membrane.hpp).
+      const auto& coarsening = mesh.face_attrs().get<double>(kCoarseningAttr);
+      auto& compression = mesh.face_attrs().get_or_add<double>(kCompressionAttr, 1.0);
+      for (FaceId f : mesh.faces()) compression[f] = std::min(1.0, 1.0 / std::sqrt(coarsening[f]));
+    }
     remeshed[gi] = remesh(mesh);
   });
   return remeshed;

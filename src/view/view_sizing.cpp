@@ -30,6 +30,7 @@ void ViewSizing::evaluate(const Mesh& mesh) {
   visible_.assign(factor_.size(), 0);
   counts_ = ViewCounts{};
   const AnticipationWindow window(path_, time_, frame_time_, params_);
+  const bool settling = time_ + 1e-9 < params_.settle;  // frame times are sums of frame_time
   std::vector<FaceId> faces;
   for (FaceId f : mesh.faces()) faces.push_back(f);
   std::vector<char> kind(faces.size(), 0);  // 0 visible, 1 back-facing, 2 out of frame
@@ -41,7 +42,8 @@ void ViewSizing::evaluate(const Mesh& mesh) {
     const FaceView view = face_view(window.frusta.front(), a, b, c, params_);
     kind[static_cast<std::size_t>(i)] = view.distance > 0 ? 2 : view.front ? 0 : 1;
     visible_[static_cast<std::size_t>(f.idx)] = kind[static_cast<std::size_t>(i)] == 0;
-    factor_[static_cast<std::size_t>(f.idx)] = view.factor >= 1 ? 1.0 : anticipated_view_factor(window, a, b, c, params_);
+    factor_[static_cast<std::size_t>(f.idx)] =
+        view.factor >= 1 || settling ? 1.0 : anticipated_view_factor(window, a, b, c, params_);
   }
   for (char k : kind) {
     if (k == 0) ++counts_.visible;
@@ -51,11 +53,12 @@ void ViewSizing::evaluate(const Mesh& mesh) {
   resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
 }
 
-void ViewSizing::modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing) const {
+void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const {
   const Camera now = path_.at(time_);
   for (FaceId f : mesh.faces()) {
     const double v = factor_[static_cast<std::size_t>(f.idx)];
-    Mat2 m = v * v * face_sizing[f];  // eq. 2
+    Mat2 m = v * v * face_sizing[f];  // eq. 2, on the shape only:
+    if (v < 1) m = tensor_max(m, motion[static_cast<std::size_t>(f.idx)]);
     if (visible_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0)) {
       const auto& vs = mesh.face_verts(f);
       Mat2 du;

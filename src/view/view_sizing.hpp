@@ -1,9 +1,12 @@
 // View-dependent sizing (seed paper, section 3): the camera's modification of the physical
 // sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
 // face's view factor (eqs. 3 and 4, then silhouette resampling); modify() scales the physical
-// tensors by v^2 (eq. 2) and, on faces visible now, bounds them in screen space so that no edge
-// is asked to be shorter than l_min pixels (eqs. 5 to 8) nor, when l_max is set, longer than
-// l_max pixels (an extension: the visible cloth keeps the degrees of freedom its folds need).
+// tensors by v^2 (eq. 2) but never below the motion criteria (velocity and compression: what
+// the camera does not see still has to move as the seen cloth does), and, on faces visible now,
+// bounds them in screen space so that no edge is asked to be shorter than l_min pixels (eqs. 5
+// to 8) nor, when l_max is set, longer than l_max pixels (an extension: the visible cloth keeps
+// the degrees of freedom its folds need). Before `settle` every factor is 1: a garment finds its
+// drape on the body at full resolution.
 #pragma once
 #include <vector>
 
@@ -28,7 +31,7 @@ class ViewSizing final : public FaceSizingModifier {
   ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads = 1);
   // View factors of the mesh's faces at the current positions and time.
   void evaluate(const Mesh& mesh);
-  void modify(const Mesh& mesh, Attribute<FaceTag, Mat2>& face_sizing) const override;
+  void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const override;
   const std::vector<double>& factors() const { return factor_; }  // by face index
   const ViewCounts& counts() const { return counts_; }
 

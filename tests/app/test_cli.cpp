@@ -124,6 +124,7 @@ TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
        {"body.02.obj", "face 2", "other vertices"}},
       {"view mode without a camera", [&] { return scene(); }, {"--mode", "view"}, {"scene.json", "camera", "--mode view needs a camera"}},
       {"view ceiling below its floor", [&] { return scene("", R"("view": {"l_min": 4, "l_max": 2}, )"); }, {}, {"view.l_max", "at least l_min"}},
+      {"negative settle time", [&] { return scene("", R"("view": {"settle": -0.1}, )"); }, {}, {"view.settle"}},
       {"missing scene", [&] { return (dir_ / "nothing.json").string(); }, {}, {"nothing.json", "cannot open"}},
       {"obstacle of a group without garments",
        [&] { return scene("", R"("obstacles": [{"name": "b", "group": "x", "mesh": {"sphere": {"radius": 0.1}}}], )"); },

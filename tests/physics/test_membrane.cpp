@@ -1,4 +1,5 @@
-// Membrane energy: finite-difference gradient and Hessian, rigid invariance, PSD projection.
+// Membrane energy: finite-difference gradient and Hessian, rigid invariance, PSD projection; the
+// compression factor of elements too coarse for their wrinkles against hand-computed energies.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -123,6 +124,72 @@ TEST(Membrane, UniaxialStretchMatchesAnalyticEnergy) {
   TriStencil x{Vec3(0, 0, 0), Vec3(0.1 * s, 0, 0), Vec3(0, 0.1, 0)};
   double e11 = 0.5 * (s * s - 1);
   EXPECT_NEAR(membrane_energy(x, m), 0.005 * 0.5 * 5000 * e11 * e11, 1e-15);
+}
+
+// Random elements as above, with a compression factor, deformed so that warp or weft (or both)
+// are compressed in most trials: the scaled energy's gradient and Hessian match finite
+// differences within each piece of its piecewise strain.
+TEST(Membrane, CompressionFactorKeepsGradientAndHessianExact) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int compressed = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    auto [x, m] = random_membrane(rng);
+    m.compression = 0.05 + 0.9 * (0.5 + 0.5 * U(rng));
+    // Shrink the world triangle by up to 15% along a random in-plane direction.
+    const Vec3 d = Vec3(U(rng), U(rng), 0.2 * U(rng)).normalized();
+    const double shrink = 0.15 * (0.5 + 0.5 * U(rng));
+    for (auto& p : x) p -= shrink * d * d.dot(p - x[0]);
+    const Mat2 e = green_strain(deformation_gradient(x, m));
+    // Finite differences must not straddle a kink of the piecewise strain.
+    if (std::abs(e(0, 0)) < 1e-4 || std::abs(e(1, 1)) < 1e-4) continue;
+    compressed += e(0, 0) < 0 || e(1, 1) < 0;
+    VecN<9> g = membrane_gradient(x, m), fd;
+    MatN<9> h = membrane_hessian(x, m), fdh;
+    VecN<9> q = flatten(x);
+    for (int i = 0; i < 9; ++i) {
+      VecN<9> qp = q, qm = q;
+      qp[i] += 1e-7;
+      qm[i] -= 1e-7;
+      fd[i] = (membrane_energy(unflatten(qp), m) - membrane_energy(unflatten(qm), m)) / 2e-7;
+      qp = q;
+      qm = q;
+      qp[i] += 1e-6;
+      qm[i] -= 1e-6;
+      fdh.col(i) = (membrane_gradient(unflatten(qp), m) - membrane_gradient(unflatten(qm), m)) / 2e-6;
+    }
+    EXPECT_LT((g - fd).norm() / g.norm(), 1e-5) << "trial " << trial;
+    EXPECT_LT((h - fdh).norm() / h.norm(), 1e-4) << "trial " << trial;
+    const MembraneEval eval = membrane_eval(x, m);
+    EXPECT_NEAR(eval.energy, membrane_energy(x, m), 1e-15);
+    EXPECT_LT((eval.gradient - g).norm(), 1e-12 * g.norm());
+    EXPECT_LT((eval.hessian - membrane_hessian_psd(x, m)).norm(), 1e-12 * h.norm());
+    EXPECT_GT(min_eigenvalue<9>(eval.hessian), -1e-10 * eval.hessian.norm()) << "trial " << trial;
+  }
+  EXPECT_GE(compressed, 30);
+}
+
+// Warp compressed by 10% and weft stretched by 5% on a right triangle: psi of (a E11, E22), by
+// hand; in tension alone the factor changes nothing; a factor of 1 is the plain element.
+TEST(Membrane, CompressionFactorScalesOnlyCompressiveWarpAndWeftStrain) {
+  const MembraneStiffness k{5000, 700, 3500, 300};
+  const double a = 0.2;
+  const MembraneElement plain = make_membrane_element(Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), k);
+  const MembraneElement coarse = make_membrane_element(Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), k, a);
+  const double e11 = 0.5 * (0.9 * 0.9 - 1), e22 = 0.5 * (1.05 * 1.05 - 1);
+  const TriStencil x{Vec3(0, 0, 0), Vec3(0.09, 0, 0), Vec3(0, 0.105, 0)};
+  const double area = 0.005;
+  EXPECT_NEAR(membrane_energy(x, coarse), area * 0.5 * (k.c11 * a * a * e11 * e11 + 2 * k.c12 * a * e11 * e22 + k.c22 * e22 * e22), 1e-15);
+  EXPECT_NEAR(membrane_energy(x, plain), area * 0.5 * (k.c11 * e11 * e11 + 2 * k.c12 * e11 * e22 + k.c22 * e22 * e22), 1e-15);
+  // Stretched and sheared, nothing compressed: identical to the plain element, bit for bit.
+  const TriStencil taut{Vec3(0, 0, 0), Vec3(0.104, 0.003, 0), Vec3(0.002, 0.102, 0.001)};
+  EXPECT_EQ(membrane_energy(taut, coarse), membrane_energy(taut, plain));
+  EXPECT_EQ(membrane_gradient(taut, coarse), membrane_gradient(taut, plain));
+  EXPECT_EQ(membrane_eval(taut, coarse).hessian, membrane_eval(taut, plain).hessian);
+  // Node 1 is pulled along warp by A F S g_1 with S11 = dpsi/dE11 of the scaled energy.
+  const VecN<9> g = membrane_gradient(x, coarse);
+  const double s11 = a * (k.c11 * a * e11 + k.c12 * e22);  // dpsi/dE11
+  EXPECT_NEAR(g[3], area * 0.9 * s11 / 0.1, 1e-12);  // node 1's x force: A F S g_1, g_1 = (1/0.1, 0)
 }
 
 }  // namespace

@@ -78,6 +78,49 @@ TEST(Sizing, VelocityCriterionMatchesTheGradient) {
   }
 }
 
+// A modifier that scales every face tensor, remembering the motion tensors it was given.
+class ScalingModifier final : public FaceSizingModifier {
+ public:
+  explicit ScalingModifier(double s) : scale_(s) {}
+  void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face) const override {
+    motion_ = motion;
+    for (FaceId f : mesh.faces()) face[f] = scale_ * face[f];
+  }
+  mutable std::vector<Mat2> motion_;
+
+ private:
+  double scale_;
+};
+
+TEST(Sizing, ModifiersGetTheMotionCriteriaAndTheCoarseningTheyCauseIsRecorded) {
+  EXPECT_NEAR(metric_ratio(Vec2(100, 4).asDiagonal(), Vec2(25, 4).asDiagonal()), 4.0, 1e-12);
+  const Mat2 r = Eigen::Rotation2Dd(0.3).toRotationMatrix();
+  EXPECT_NEAR(metric_ratio(r * Mat2(Vec2(9, 1).asDiagonal()) * r.transpose(), Mat2::Identity()), 9.0, 1e-12);
+  // The shear flow of VelocityCriterionMatchesTheGradient at w = 5: 100 along u (10 cm edges),
+  // nothing along v, clamped to 1/(20 cm)^2 = 25. A quarter of it is clamped back to 25 along
+  // both axes: the face may be 2 times longer along u than physics asks, 4 in the metric.
+  const double w = 5.0;
+  Mesh mesh = build_mesh(make_grid(1, 1, 4, 4));
+  for (NodeId n : mesh.nodes()) mesh.v(n) = Vec3(0, w * mesh.x(n).x(), 0);
+  SizingParams p;
+  ScalingModifier quarter(0.25);
+  compute_sizing(mesh, p, &quarter);
+  const auto& face = mesh.face_attrs().get<Mat2>(kFaceSizingAttr);
+  const auto& coarsening = mesh.face_attrs().get<double>(kCoarseningAttr);
+  for (FaceId f : mesh.faces()) {
+    const Mat2& motion = quarter.motion_[static_cast<std::size_t>(f.idx)];
+    EXPECT_NEAR(motion(0, 0), 100, 1e-9);
+    EXPECT_NEAR(motion(1, 1), 25, 1e-9);
+    EXPECT_NEAR(face[f](0, 0), 25, 1e-9);
+    EXPECT_NEAR(face[f](1, 1), 25, 1e-9);
+    EXPECT_NEAR(coarsening[f], 4.0, 1e-9);
+  }
+  // Refining is no coarsening.
+  ScalingModifier four(4);
+  compute_sizing(mesh, p, &four);
+  for (FaceId f : mesh.faces()) EXPECT_NEAR(mesh.face_attrs().get<double>(kCoarseningAttr)[f], 0.25, 1e-9);
+}
+
 TEST(Sizing, VertsAverageTheirFacesByArea) {
   Mesh mesh = build_mesh(make_grid(1, 1, 2, 2));
   SizingParams p;

@@ -1,6 +1,7 @@
 // --mode view on sheet-camera: with the view factor forced to 1 and the screen-space floor off
 // it reproduces the adaptive run bit for bit; with the scene's parameters it coarsens the sheet
-// while the camera sees its back and where the close-up leaves it out of frame.
+// while the camera sees its back and where the close-up leaves it out of frame, and the faces it
+// coarsened carry less stiffness against compression.
 #include <gtest/gtest.h>
 
 #include "scene/scene.hpp"
@@ -54,6 +55,17 @@ TEST(ViewMode, FacesSeenFromBehindOrOutOfFrameAreCoarsened) {
   double lowest = 1;
   for (FaceId f : view.scene().garments[0].mesh.faces()) lowest = std::min(lowest, factor[f]);
   EXPECT_LT(lowest, 0.5);
+  // Faces the camera coarsened resist compression less, by the square root of how much coarser
+  // (in the metric) than their physics they may be; the others are the plain material.
+  const Mesh& sheet = view.scene().garments[0].mesh;
+  const auto& coarsening = sheet.face_attrs().get<double>(kCoarseningAttr);
+  const auto& compression = sheet.face_attrs().get<double>(kCompressionAttr);
+  int relaxed = 0;
+  for (FaceId f : sheet.faces()) {
+    EXPECT_EQ(compression[f], std::min(1.0, 1.0 / std::sqrt(coarsening[f])));
+    relaxed += compression[f] < 0.5;
+  }
+  EXPECT_GT(relaxed, 0);
 }
 
 }  // namespace

@@ -107,6 +107,41 @@ TEST(ViewFactor, SilhouetteResamplingRaisesOnlyTheLessVisibleSide) {
   EXPECT_EQ(small, (std::vector<double>{0.6, 0.9}));
 }
 
+// A sheet seen from behind, in frame: eq. 2 scales the shape tensor by v_back^2 but keeps what the
+// motion asks for (axis by axis, both tensors sharing the material axes here); before `settle`
+// every factor is 1 and the tensors pass unchanged.
+TEST(ViewSizing, EqTwoCoarsensTheShapeButNotTheMotionAndWaitsForTheDrape) {
+  Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
+  Camera lens = front_camera();
+  lens.up = Vec3(0, 0, 1);
+  const CameraPath path(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from below
+  ViewParams p;
+  p.settle = 0.4;
+  const Mat2 shape = Vec2(1 / (0.01 * 0.01), 1 / (0.01 * 0.01)).asDiagonal();  // 1 cm edges
+  const Mat2 motion_x = Vec2(1 / (0.02 * 0.02), 1 / (0.2 * 0.2)).asDiagonal();  // 2 cm along x
+  const std::vector<Mat2> motion(static_cast<std::size_t>(m.face_capacity()), motion_x);
+  for (double t : {0.2, 1.0}) {
+    ViewSizing view(path, p, t, 0.04);
+    view.evaluate(m);
+    auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
+    for (FaceId f : m.faces()) sizing[f] = shape;
+    view.modify(m, motion, sizing);
+    EXPECT_EQ(view.counts().back_facing, 2) << "t = " << t;
+    for (FaceId f : m.faces()) {
+      if (t < p.settle) {
+        EXPECT_EQ(view.factors()[static_cast<std::size_t>(f.idx)], 1.0);
+        EXPECT_EQ(sizing[f], shape);
+        continue;
+      }
+      EXPECT_EQ(view.factors()[static_cast<std::size_t>(f.idx)], p.v_back);
+      // Along x the motion's 2 cm wins over 1 cm / v_back = 5 cm; along y the shape's 5 cm.
+      EXPECT_NEAR(sizing[f](0, 0), 1 / (0.02 * 0.02), 1e-9);
+      EXPECT_NEAR(sizing[f](1, 1), p.v_back * p.v_back / (0.01 * 0.01), 1e-9);
+      EXPECT_NEAR(sizing[f](0, 1), 0.0, 1e-9);
+    }
+  }
+}
+
 // Screen length, in pixels, of the shortest edge the tensor allows along material direction d.
 double screen_edge(const Mat2& m, const Mat23& j, const Mat32& f, const Vec2& d) {
   const Vec2 u = d.normalized() / std::sqrt(d.normalized().dot(m * d.normalized()));
