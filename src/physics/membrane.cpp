@@ -1,6 +1,8 @@
 // Orthotropic StVK constant-strain triangle (Narain et al. 2012 section 3; Green strain).
 #include "physics/membrane.hpp"
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 
 namespace vdc {
@@ -42,6 +44,11 @@ MatN<9> hessian_with(const Mat32& f, const Mat2& s_geo, const MembraneElement& m
 }
 
 }  // namespace
+
+double coarse_compression_factor(double coarsening) {
+  if (!(coarsening > 1)) return 1;
+  return std::max(1e-6, 1 / (coarsening * coarsening));
+}
 
 MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k,
                                       double compression) {

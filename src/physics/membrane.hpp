@@ -7,9 +7,8 @@
 // folds at almost no cost, and a coarse region would hold its shape like a stiff shell (membrane
 // locking). `compression` < 1 models those unresolved buckles: a compressive warp or weft
 // strain E counts as compression * E in psi, so the element keeps its full response in tension
-// and shear and carries compression^2 of the stiffness against compression (the ratio of the
-// plate buckling stresses, which fall as 1 / wavelength^2, at a resolution compression times the
-// element's). 1 is the plain material.
+// and shear and carries compression^2 of the stiffness against compression. 1 is the plain
+// material.
 #pragma once
 #include <array>
 
@@ -30,6 +29,14 @@ struct MembraneElement {
 };
 
 using TriStencil = std::array<Vec3, 3>;
+
+// The compression factor of an element `coarsening` times coarser than its sizing asks (the
+// squared ratio of edge lengths): 1 up to 1, then coarsening^-2, not below 1e-6. Buckled cloth
+// carries almost no compression (pi^2 B / lambda^2: 0.25 N/m for cotton's 2 cm wrinkles, where
+// 1% of strain takes 50 N/m), so the factor falls steeply; it starts at 1 so that a face at its
+// own resolution is the plain material, and the exponent is the one that kept view runs closest
+// to the adaptive shot (bench/RESULTS.md, "The compression law").
+double coarse_compression_factor(double coarsening);
 
 MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k,
                                       double compression = 1);

@@ -198,12 +198,11 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
     }
     compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
     if (views[gi]) {
-      // A face the camera lets be H / h times longer than its physics asks (coarsening is the
-      // square of that) cannot form the wrinkles of size h: its compression factor is h / H
-      // (membrane.hpp).
+      // A face the camera lets be coarser than its physics asks cannot form the wrinkles that
+      // would take up its compression (membrane.hpp).
       const auto& coarsening = mesh.face_attrs().get<double>(kCoarseningAttr);
       auto& compression = mesh.face_attrs().get_or_add<double>(kCompressionAttr, 1.0);
-      for (FaceId f : mesh.faces()) compression[f] = std::min(1.0, 1.0 / std::sqrt(coarsening[f]));
+      for (FaceId f : mesh.faces()) compression[f] = coarse_compression_factor(coarsening[f]);
     }
     remeshed[gi] = remesh(mesh);
   });

@@ -2,6 +2,7 @@
 // compression factor of elements too coarse for their wrinkles against hand-computed energies.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "physics/membrane.hpp"
@@ -190,6 +191,26 @@ TEST(Membrane, CompressionFactorScalesOnlyCompressiveWarpAndWeftStrain) {
   const VecN<9> g = membrane_gradient(x, coarse);
   const double s11 = a * (k.c11 * a * e11 + k.c12 * e22);  // dpsi/dE11
   EXPECT_NEAR(g[3], area * 0.9 * s11 / 0.1, 1e-12);  // node 1's x force: A F S g_1, g_1 = (1/0.1, 0)
+}
+
+// The factor of a coarsened element, by hand: 1 at or below its own resolution (and for a
+// coarsening that is not a number), 1/4 at twice the squared length, continuous at 1, falling,
+// and not below 1e-6 however coarse.
+TEST(Membrane, CoarseCompressionFactorIsOneAtItsOwnResolutionAndFallsAsTheSquareBeyond) {
+  EXPECT_EQ(coarse_compression_factor(0.3), 1.0);
+  EXPECT_EQ(coarse_compression_factor(1.0), 1.0);
+  EXPECT_EQ(coarse_compression_factor(std::nan("")), 1.0);
+  EXPECT_DOUBLE_EQ(coarse_compression_factor(2.0), 0.25);
+  EXPECT_DOUBLE_EQ(coarse_compression_factor(10.0), 1e-2);
+  EXPECT_NEAR(coarse_compression_factor(1 + 1e-9), 1.0, 1e-8);
+  double last = 1;
+  for (double c = 1.1; c < 999; c *= 1.1) {
+    EXPECT_LT(coarse_compression_factor(c), last);
+    last = coarse_compression_factor(c);
+  }
+  EXPECT_EQ(coarse_compression_factor(1e3), 1e-6);
+  EXPECT_EQ(coarse_compression_factor(1e5), 1e-6);
+  EXPECT_EQ(coarse_compression_factor(1e300), 1e-6);
 }
 
 }  // namespace
