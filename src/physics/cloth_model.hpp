@@ -24,8 +24,8 @@ struct ClothModel {
 inline constexpr const char* kRestAngleAttr = "rest_angle";
 
 // Name of the optional face attribute (double) holding each face's membrane `compression` factor
-// (membrane.hpp: the stiffness left against warp and weft compression in an element too coarse
-// for its wrinkles); absent means 1, the plain material.
+// c (membrane.hpp: an element too coarse for its wrinkles keeps c^2 of its stiffness against
+// warp and weft compression); absent means 1, the plain material.
 inline constexpr const char* kCompressionAttr = "compression";
 
 // Appends a compact mesh's elements; its node i becomes model node offset + i. Returns the offset.

@@ -6,7 +6,8 @@
 // bounds them in screen space so that no edge is asked to be shorter than l_min pixels (eqs. 5
 // to 8) nor, when l_max is set, longer than l_max pixels (an extension: the visible cloth keeps
 // the degrees of freedom its folds need). Before `settle` every factor is 1: a garment finds its
-// drape on the body at full resolution.
+// drape on the body with nothing coarsened for facing away or being out of frame (the screen-
+// space bounds still apply).
 #pragma once
 #include <vector>
 
