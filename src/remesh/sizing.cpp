@@ -102,7 +102,7 @@ SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec
           compression_metric(dx.transpose() * dx - Mat2::Identity(), s2, p.refine_compression)};
 }
 
-Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p) { return clamp_sizing(tensor_max(c.velocity, c.compression), p); }
+Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p) { return clamp_sizing(c.velocity, p); }
 
 namespace {
 // The largest of a face's criteria, obstacle proximity included.

@@ -36,8 +36,8 @@ class FaceSizingModifier {
  public:
   virtual ~FaceSizingModifier() = default;
   // Called with the clamped physical tensors, which it may rewrite, and, by face index, the
-  // clamped tensors of the criteria that resolve the cloth's motion (velocity and compression,
-  // see motion_sizing), which a modifier trading visual detail keeps.
+  // clamped tensors of the criterion that resolves the cloth's motion (velocity, see
+  // motion_sizing), which a modifier trading visual detail keeps.
   virtual void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const = 0;
 };
 
@@ -47,7 +47,8 @@ struct SizingCriteria {
   Mat2 curvature, velocity, compression;
 };
 SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec3>& node_normals, const SizingParams& p);
-// The clamped tensor of the motion criteria alone: tensor_max of velocity and compression.
+// The clamped tensor of the motion criterion alone, velocity. (Compression is not in it: a face
+// coarsened below its compression criterion gives up compression instead, membrane.hpp.)
 Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p);
 
 // The physical tensor of one face before clamping: the largest of the criteria. `planes`, by

@@ -1,11 +1,11 @@
 // View-dependent sizing (seed paper, section 3): the camera's modification of the physical
 // sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
 // face's view factor (eqs. 3 and 4, then silhouette resampling); modify() scales the physical
-// tensors by v^2 (eq. 2) but never below the motion criteria (velocity and compression: what
-// the camera does not see still has to move as the seen cloth does), and, on faces visible now,
-// bounds them in screen space so that no edge is asked to be shorter than l_min pixels (eqs. 5
-// to 8) nor, when l_max is set, longer than l_max pixels (an extension: the visible cloth keeps
-// the degrees of freedom its folds need). Before `settle` every factor is 1: a garment finds its
+// tensors by v^2 (eq. 2) but never below the velocity criterion (what the camera does not see
+// still has to move as the seen cloth does), and, on faces visible now, bounds them in screen
+// space so that no edge is asked to be shorter than l_min pixels (eqs. 5 to 8) nor, when l_max
+// is set, longer than l_max pixels (an extension: the visible cloth keeps the degrees of
+// freedom its folds need). Before `settle` every factor is 1: a garment finds its
 // drape on the body with nothing coarsened for facing away or being out of frame (the screen-
 // space bounds still apply).
 #pragma once

@@ -115,6 +115,17 @@ TEST(Sizing, ModifiersGetTheMotionCriteriaAndTheCoarseningTheyCauseIsRecorded) {
     EXPECT_NEAR(face[f](1, 1), 25, 1e-9);
     EXPECT_NEAR(coarsening[f], 4.0, 1e-9);
   }
+  // Compression is not a motion criterion: a sheet at rest squeezed to 90% along u asks for
+  // finer faces by its compression criterion, but the modifier is given only the clamped
+  // velocity criterion, the coarsest size.
+  Mesh squeezed = build_mesh(make_grid(1, 1, 4, 4));
+  for (NodeId n : squeezed.nodes()) squeezed.x(n).x() *= 0.9;
+  const std::vector<Vec3> up(static_cast<std::size_t>(squeezed.node_capacity()), Vec3(0, 0, 1));
+  for (FaceId f : squeezed.faces())
+    EXPECT_GT(clamp_sizing(sizing_criteria(squeezed, f, up, p).compression, p)(0, 0), 100.0);
+  compute_sizing(squeezed, p, &quarter);
+  for (FaceId f : squeezed.faces())
+    EXPECT_LT((quarter.motion_[static_cast<std::size_t>(f.idx)] - 25 * Mat2::Identity()).norm(), 1e-9);
   // Refining is no coarsening.
   ScalingModifier four(4);
   compute_sizing(mesh, p, &four);
