@@ -11,6 +11,11 @@ BendStencil stencil(const Mesh& mesh, EdgeId e) {
           mesh.x(mesh.opposite_node(e, 1))};
 }
 
+// The mesh's kCompressionAttr, or null where it has none (every factor 1).
+const Attribute<FaceTag, double>* compression_factors(const Mesh& mesh) {
+  return mesh.face_attrs().has(kCompressionAttr) ? &mesh.face_attrs().get<double>(kCompressionAttr) : nullptr;
+}
+
 }  // namespace
 
 int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& material) {
@@ -19,7 +24,7 @@ int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& mate
   model.num_nodes += mesh.num_nodes();
   model.node_mass.resize(static_cast<std::size_t>(model.num_nodes), 0.0);
   const MembraneStiffness k = material.membrane();
-  const auto* compression = mesh.face_attrs().has(kCompressionAttr) ? &mesh.face_attrs().get<double>(kCompressionAttr) : nullptr;
+  const auto* compression = compression_factors(mesh);
   for (FaceId f : mesh.faces()) {
     const auto& vs = mesh.face_verts(f);
     MembraneElement m = make_membrane_element(mesh.u(vs[0]), mesh.u(vs[1]), mesh.u(vs[2]), k, compression ? (*compression)[f] : 1.0);
@@ -50,7 +55,7 @@ int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& mate
 }
 
 void update_compression(ClothModel& model, const Mesh& mesh, std::size_t first_face) {
-  const auto* compression = mesh.face_attrs().has(kCompressionAttr) ? &mesh.face_attrs().get<double>(kCompressionAttr) : nullptr;
+  const auto* compression = compression_factors(mesh);
   std::size_t i = first_face;
   for (FaceId f : mesh.faces()) model.membranes.at(i++).compression = compression ? (*compression)[f] : 1.0;
 }

@@ -19,7 +19,7 @@ struct ViewParams {
   double l_max = 0;                   // pixels: longest visible edge on screen (0: no ceiling)
   double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling
   int samples_per_frame = 4;          // camera samples per frame over the anticipation window
-  double settle = 0;                  // s: factors are 1 before this time (the drape forms at full resolution)
+  double settle = 0;                  // s: factors are 1 before this time (the drape forms uncoarsened by v)
 };
 
 // How a face is seen at one instant.
