@@ -158,7 +158,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
       stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
     }
   }
-  for (const RemeshStats& r : size_and_remesh(views, planes)) {
+  for (const RemeshStats& r : size_and_remesh(views, planes, started_with)) {
     stats.splits += r.splits;
     stats.flips += r.flips;
     stats.collapses += r.collapses;
@@ -183,7 +183,8 @@ void Simulation::remesh_garments(FrameStats& stats) {
 // too small for the loops inside them to use a second core well. Each garment's result does not
 // depend on which thread made it.
 std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
-                                                     const std::vector<std::vector<ObstaclePlane>>& planes) {
+                                                     const std::vector<std::vector<ObstaclePlane>>& planes,
+                                                     std::vector<Mesh>& started_with) {
   const std::size_t count = scene_.garments.size();
   std::vector<double> faces;
   for (const auto& g : scene_.garments) faces.push_back(g.mesh.num_faces());
@@ -203,6 +204,15 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
       const auto& coarsening = mesh.face_attrs().get<double>(kCoarseningAttr);
       auto& compression = mesh.face_attrs().get_or_add<double>(kCompressionAttr, 1.0);
       for (FaceId f : mesh.faces()) compression[f] = coarse_compression_factor(coarsening[f]);
+      // The start mesh (the same faces until remesh() below) is the frame's fallback
+      // (keep_fewer_crossings): it goes on with this frame's factors, not the last frame's.
+      const auto& factor = mesh.face_attrs().get<double>(kViewFactorAttr);
+      auto& start_factor = started_with[gi].face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
+      auto& start_compression = started_with[gi].face_attrs().get_or_add<double>(kCompressionAttr, 1.0);
+      for (FaceId f : mesh.faces()) {
+        start_factor[f] = factor[f];
+        start_compression[f] = compression[f];
+      }
     }
     remeshed[gi] = remesh(mesh);
   });

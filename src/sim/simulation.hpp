@@ -98,8 +98,11 @@ class Simulation {
  private:
   void rebuild();                       // elements, assembler and solver from the meshes
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
+  // Sizes and remeshes every garment; a view run's factors also go onto `started_with`, the
+  // frame's start meshes, so that a fallback to them goes on with this frame's.
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
-                                           const std::vector<std::vector<ObstaclePlane>>& planes);
+                                           const std::vector<std::vector<ObstaclePlane>>& planes,
+                                           std::vector<Mesh>& started_with);
   // Removes interpenetrations that exist at the current time (start-up, after remeshing).
   UntangleReport untangle_cloth(FrameStats& stats);
   // After a remesh whose crossings untangling could not all remove (remeshed_pairs left): goes on
