@@ -72,7 +72,7 @@ CheckSummary check_run(const std::string& run, int every, std::ostream& out) {
   std::error_code ec;
   fs::remove(status_path, ec);
   std::ofstream csv(csv_path + ".partial");
-  if (!csv) throw InputError(csv_path + ".partial", "", "cannot write");
+  if (!csv) throw OutputError(csv_path + ".partial", "cannot write");
   csv << "frame,mesh,other,face_pairs\n";
   CheckSummary summary;
   int index = 0;
@@ -103,10 +103,10 @@ CheckSummary check_run(const std::string& run, int every, std::ostream& out) {
   }
   csv.close();
   fs::rename(csv_path + ".partial", csv_path, ec);
-  if (ec) throw InputError(csv_path, "", "cannot write: " + ec.message());
+  if (ec) throw OutputError(csv_path, "cannot write: " + ec.message());
   std::ofstream status(status_path);
   status << summary.frames_checked << " " << summary.frames_with_crossings << " " << every << "\n";
-  if (!status) throw InputError(status_path, "", "cannot write");
+  if (!status) throw OutputError(status_path, "cannot write");
   out << "vdcloth check: " << summary.frames_checked << " frame(s) of " << run << ", " << summary.frames_with_crossings
       << " with crossings; " << csv_path << "\n";
   return summary;

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -43,7 +44,8 @@ const char* kMainHelp =
     "  vdcloth --version                  version\n"
     "\n"
     "`vdcloth COMMAND --help` lists a command's options. Exit status: 0 done, 2 bad input or usage,\n"
-    "3 a simulation failure that could not be recovered (check: a crossing; fidelity: a failed verdict).\n";
+    "3 a failure part-way: a simulation that could not be recovered, results that could not be written,\n"
+    "memory that ran out or an unexpected error (check: a crossing; fidelity: a failed verdict).\n";
 
 const char* kRunHelp =
     "usage: vdcloth run SCENE.json [--mode fixed|adaptive|view] [--frames N] [--out DIR] [--threads N]\n"
@@ -267,7 +269,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     if (line_open) out << "\n";
     try {
       output.write_summary(sim, "failed", what + ": " + why, usage(), segments, done, threads, args.perturbation);
-    } catch (const InputError&) {
+    } catch (const std::exception&) {  // the error stream still says why
     }
     err << "vdcloth: " << what << ": " << why << " (frames 0 to " << done << " are in " << dir << ")" << std::endl;
     return kExitSimulationFailed;
@@ -283,7 +285,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
         progress.usage = usage();
         try {
           write_checkpoint(dir + "/" + kCheckpointFile, sim, progress);
-        } catch (const InputError& e) {
+        } catch (const OutputError& e) {
           log(std::string(e.what()) + "; the run goes on, resumable from its previous checkpoint");
         }
       }
@@ -301,8 +303,12 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     }
   } catch (const SimulationError& e) {
     return stop_part_way("simulation failed", e.what());
-  } catch (const InputError& e) {  // only the output's files fail this way once the run is going
+  } catch (const OutputError& e) {
     return stop_part_way("writing the results failed", e.what());
+  } catch (const std::bad_alloc&) {
+    return stop_part_way("out of memory", "an allocation failed");
+  } catch (const std::exception& e) {  // a fault of vdcloth's own or of the system, not of the input
+    return stop_part_way("unexpected error", e.what());
   }
   if (line_open) out << "\n";
   const ResourceUsage total = usage();
@@ -347,6 +353,15 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     return kExitBadInput;
   } catch (const SimulationError& e) {
     err << "vdcloth: simulation failed: " << e.what() << "\n";
+    return kExitSimulationFailed;
+  } catch (const OutputError& e) {
+    err << "vdcloth: writing the results failed: " << e.what() << "\n";
+    return kExitSimulationFailed;
+  } catch (const std::bad_alloc&) {
+    err << "vdcloth: out of memory: an allocation failed\n";
+    return kExitSimulationFailed;
+  } catch (const std::exception& e) {
+    err << "vdcloth: unexpected error: " << e.what() << "\n";
     return kExitSimulationFailed;
   }
 }

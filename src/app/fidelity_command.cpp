@@ -290,7 +290,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
     if (!f.floor.empty()) out << " (floor " << f.floor << ")";
     out << "; " << f.out << "/fidelity.csv, " << f.out << "/fidelity_shots.csv\n";
     return pass ? kExitOk : kExitSimulationFailed;
-  } catch (const InputError&) {
+  } catch (const std::exception&) {  // nothing half-written stays behind, whatever stopped it
     if (frames_csv) frames_csv->discard();
     if (shots_csv) shots_csv->discard();
     std::error_code ec;

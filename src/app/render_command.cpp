@@ -114,7 +114,7 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
     std::string written;
     if (r.compare.empty()) {
       written = numbered(r.out, "frame", frame, ".png");
-      if (!write_png(a.pixels.image, written)) throw InputError(written, "", "cannot write");
+      if (!write_png(a.pixels.image, written)) throw OutputError(written, "cannot write");
     } else {
       const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale);
       const RenderComparison c = compare_renders(a.pixels, a.cloth, b.pixels, b.cloth);
@@ -124,7 +124,7 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
       iou_min = std::min(iou_min, c.cloth_iou);
       diff_sum += c.mean_abs_diff;
       written = numbered(r.out, "compare", frame, ".png");
-      if (!write_png(side_by_side(a.pixels.image, b.pixels.image), written)) throw InputError(written, "", "cannot write");
+      if (!write_png(side_by_side(a.pixels.image, b.pixels.image), written)) throw OutputError(written, "cannot write");
     }
     ++drawn;
     out << "vdcloth render: frame " << frame << " -> " << written << "\n" << std::flush;

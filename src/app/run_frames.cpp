@@ -52,15 +52,15 @@ PartialTable::PartialTable(std::string path) : path_(std::move(path)) {
   std::error_code ec;
   fs::remove(path_, ec);
   stream_.open(path_ + ".partial");
-  if (!stream_) throw InputError(path_ + ".partial", "", "cannot write");
+  if (!stream_) throw OutputError(path_ + ".partial", "cannot write");
 }
 
 void PartialTable::finish() {
   stream_.close();
-  if (stream_.fail()) throw InputError(path_ + ".partial", "", "cannot write");
+  if (stream_.fail()) throw OutputError(path_ + ".partial", "cannot write");
   std::error_code ec;
   fs::rename(path_ + ".partial", path_, ec);
-  if (ec) throw InputError(path_, "", "cannot write: " + ec.message());
+  if (ec) throw OutputError(path_, "cannot write: " + ec.message());
 }
 
 void PartialTable::discard() {

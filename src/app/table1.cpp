@@ -265,7 +265,7 @@ void write_tables(const std::vector<Run>& runs, const Table1Args& args, int thre
       f << "\n";
     }
   }
-  if (!csv || !md) throw InputError(args.out + "/table1.md", "", "cannot write");
+  if (!csv || !md) throw OutputError(args.out + "/table1.md", "cannot write");
 }
 
 }  // namespace
@@ -386,6 +386,8 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
           try {
             check_run(dir, 1, out);
           } catch (const InputError& e) {
+            err << "vdcloth bench table1: " << name << " in " << mode << " mode not checked: " << e.what() << std::endl;
+          } catch (const OutputError& e) {
             err << "vdcloth bench table1: " << name << " in " << mode << " mode not checked: " << e.what() << std::endl;
           }
         }

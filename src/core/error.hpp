@@ -1,4 +1,5 @@
-// Typed errors. InputError: bad user input (exit status 2). SimulationError: unrecoverable (exit 3).
+// Typed errors. InputError: bad user input (exit status 2). OutputError, SimulationError: a
+// failure part-way (exit 3).
 #pragma once
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,13 @@ class InputError : public std::runtime_error {
     return s.empty() ? problem : s + ": " + problem;
   }
   std::string file_, place_, problem_;
+};
+
+// A result could not be written (a full disk, a directory taken away): names the file and the
+// problem.
+class OutputError : public std::runtime_error {
+ public:
+  OutputError(const std::string& file, const std::string& problem) : std::runtime_error(file + ": " + problem) {}
 };
 
 // A mesh topology request that would break an invariant (non-manifold edge, flipped orientation...).

@@ -85,7 +85,7 @@ void write_checkpoint(const std::string& path, const Ensemble& run, const Checkp
   if (ok) std::filesystem::rename(tmp, path, ec);
   if (!ok || ec) {
     std::filesystem::remove(tmp, ec);
-    throw InputError(path, "", std::string("cannot write: ") + (ok ? ec.message() : std::strerror(errno)));
+    throw OutputError(path, std::string("cannot write: ") + (ok ? ec.message() : std::strerror(errno)));
   }
 }
 

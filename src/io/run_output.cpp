@@ -73,7 +73,7 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   // A checkpoint left by an earlier run must not be resumed into this one.
   fs::remove(fs::path(dir) / kCheckpointFile, ec);
   stats_.open(dir + "/stats.csv");
-  if (!stats_) throw InputError(dir + "/stats.csv", "", "cannot write");
+  if (!stats_) throw OutputError(dir + "/stats.csv", "cannot write");
   stats_ << kStatsHeader << "\n";
 }
 
@@ -107,15 +107,15 @@ RunOutput::RunOutput(const std::string& dir, int resume_at) : dir_(dir) {
     std::ofstream rows(stats_path + ".tmp", std::ios::trunc);
     rows << kStatsHeader << "\n";
     for (const auto& line : kept) rows << line << "\n";
-    if (!rows.flush()) throw InputError(stats_path + ".tmp", "", "cannot write");
+    if (!rows.flush()) throw OutputError(stats_path + ".tmp", "cannot write");
   }
   fs::rename(stats_path + ".tmp", stats_path, ec);
-  if (ec) throw InputError(stats_path, "", "cannot write: " + ec.message());
+  if (ec) throw OutputError(stats_path, "cannot write: " + ec.message());
   for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames", ec))
     if (const auto f = parse_frame_file(entry.path().filename().string()); f && f->frame > resume_at) fs::remove(entry.path(), ec);
   fs::remove(fs::path(dir) / "summary.json", ec);
   stats_.open(stats_path, std::ios::app);
-  if (!stats_) throw InputError(stats_path, "", "cannot write");
+  if (!stats_) throw OutputError(stats_path, "cannot write");
 }
 
 void RunOutput::tally(int faces, double seconds) {
@@ -132,16 +132,16 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
   for (const auto& part : run.parts()) {
     for (const auto& g : part->scene().garments) {
       if (!write_obj(g.mesh, frame_file(dir_, "cloth", g.name, frame)))
-        throw InputError(frame_file(dir_, "cloth", g.name, frame), "", "cannot write");
+        throw OutputError(frame_file(dir_, "cloth", g.name, frame), "cannot write");
       // View mode: each garment's faces with their view factors, beside the OBJ.
       if (g.mesh.face_attrs().has(kViewFactorAttr) &&
           !write_ply_with_face_values(g.mesh, frame_file(dir_, "cloth", g.name, frame, ".ply"), "view", kViewFactorAttr))
-        throw InputError(frame_file(dir_, "cloth", g.name, frame, ".ply"), "", "cannot write");
+        throw OutputError(frame_file(dir_, "cloth", g.name, frame, ".ply"), "cannot write");
     }
     // Obstacles of no group are in every part: written once, from the first.
     for (const auto& o : part->scene().obstacles)
       if ((part == run.parts().front() || !o.group.empty()) && !write_obj(o.mesh, frame_file(dir_, "obstacle", o.name, frame)))
-        throw InputError(frame_file(dir_, "obstacle", o.name, frame), "", "cannot write");
+        throw OutputError(frame_file(dir_, "obstacle", o.name, frame), "cannot write");
   }
 }
 
@@ -153,7 +153,7 @@ void RunOutput::write_stats_row(const FrameStats& s) {
                 s.energy.gravitational, s.energy.elastic, s.proximities, s.untangle_moves, s.visible_faces,
                 s.back_facing_faces, s.out_of_frame_faces, s.view_seconds, s.velocity_clamps, s.remesh_undone);
   stats_ << line << std::flush;
-  if (!stats_) throw InputError(dir_ + "/stats.csv", "", "cannot write");
+  if (!stats_) throw OutputError(dir_ + "/stats.csv", "cannot write");
   tally(s.faces, s.seconds);
 }
 
@@ -187,7 +187,7 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   j["garments"] = garments;
   std::ofstream out(dir_ + "/summary.json");
   out << j.dump(2) << "\n";
-  if (!out) throw InputError(dir_ + "/summary.json", "", "cannot write");
+  if (!out) throw OutputError(dir_ + "/summary.json", "cannot write");
 }
 
 }  // namespace vdc

@@ -222,6 +222,42 @@ TEST_F(CliTest, ResultsThatCannotBeWrittenStopTheRunSayingWhy) {
   EXPECT_FALSE(fs::exists(frames / "cloth_s.0002.obj"));  // stopped at the first frame
 }
 
+// A stream buffer that takes `lines` lines and then refuses every character.
+class BreaksAfterLines : public std::streambuf {
+ public:
+  explicit BreaksAfterLines(int lines) : lines_left_(lines) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (lines_left_ <= 0) return traits_type::eof();
+    if (c == '\n') --lines_left_;
+    return c;
+  }
+
+ private:
+  int lines_left_;
+};
+
+// An error that is neither the input's nor the simulation's (here the progress stream failing
+// after the run's first line and its first frame's) still ends the run with status 3, the
+// frames done kept and a `failed` summary naming the error, instead of escaping to terminate.
+TEST_F(CliTest, AnUnexpectedErrorPartWayStopsTheRunSayingWhy) {
+  BreaksAfterLines broken(2);
+  std::ostream out(&broken);
+  out.exceptions(std::ios::badbit);
+  std::ostringstream err;
+  const int status = run_cli({"run", scene(), "--out", out_dir(), "--frames", "4", "--threads", "1", "--mesh-every", "1"}, out, err, false);
+  EXPECT_EQ(status, kExitSimulationFailed) << err.str();
+  EXPECT_NE(err.str().find("vdcloth: unexpected error: "), std::string::npos) << err.str();
+  const nlohmann::json summary = nlohmann::json::parse(std::ifstream(dir_ / "out" / "summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_EQ(summary["error"].get<std::string>().rfind("unexpected error: ", 0), 0u) << summary.dump();
+  // Frame 2 was done and written before its progress line broke the stream.
+  EXPECT_EQ(summary["frames"], 2);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "frames" / "cloth_s.0002.obj"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "frames" / "cloth_s.0003.obj"));
+}
+
 TEST_F(CliTest, RenderDrawsEachFrameAndARunComparedWithItselfMatchesExactly) {
   const std::string camera =
       R"("camera": {"fov": 40, "width": 160, "height": 120, "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}]}, )";
