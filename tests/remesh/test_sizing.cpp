@@ -132,6 +132,14 @@ TEST(Sizing, ModifiersGetTheMotionCriteriaAndTheCoarseningTheyCauseIsRecorded) {
   for (FaceId f : mesh.faces()) EXPECT_NEAR(mesh.face_attrs().get<double>(kCoarseningAttr)[f], 0.25, 1e-9);
 }
 
+// A modifier that gives each face its own isotropic tensor, inside the clamp (1/0.2^2 to 1/0.01^2).
+class PerFaceModifier final : public FaceSizingModifier {
+ public:
+  void modify(const Mesh& mesh, const std::vector<Mat2>&, Attribute<FaceTag, Mat2>& face) const override {
+    for (FaceId f : mesh.faces()) face[f] = (30.0 + 10.0 * f.idx) * Mat2::Identity();
+  }
+};
+
 TEST(Sizing, VertsAverageTheirFacesByArea) {
   Mesh mesh = build_mesh(make_grid(1, 1, 2, 2));
   SizingParams p;
@@ -139,6 +147,32 @@ TEST(Sizing, VertsAverageTheirFacesByArea) {
   // A flat sheet at rest asks for the coarsest size everywhere.
   const auto& vert = mesh.vert_attrs().get<Mat2>(kSizingAttr);
   for (VertId v : mesh.verts()) EXPECT_LT((vert[v] - Mat2::Identity() / (0.2 * 0.2)).norm(), 1e-9);
+
+  // Faces of unequal tensors and areas (the middle vert moved off centre in material space):
+  // each vert gets the area-weighted mean of its faces' tensors, computed here by hand.
+  VertId middle;
+  for (VertId v : mesh.verts())
+    if ((mesh.u(v) - Vec2(0.5, 0.5)).norm() < 1e-12) middle = v;
+  ASSERT_TRUE(middle.valid());
+  mesh.u(middle) = Vec2(0.3, 0.65);
+  const PerFaceModifier modifier;
+  compute_sizing(mesh, p, &modifier);
+  double plain_mean = 0, weighted = 0, total = 0;
+  for (VertId v : mesh.verts()) {
+    Mat2 sum = Mat2::Zero();
+    double area = 0, count = 0;
+    for (FaceId f : mesh.vert_faces(v)) {
+      sum += mesh.material_area(f) * (30.0 + 10.0 * f.idx) * Mat2::Identity();
+      area += mesh.material_area(f);
+      count += 1;
+      if (v == middle) plain_mean += 30.0 + 10.0 * f.idx;
+    }
+    EXPECT_LT((vert[v] - sum / area).norm(), 1e-9 * (sum / area).norm()) << "vert " << v.idx;
+    if (v == middle) weighted = vert[v](0, 0), total = count;
+  }
+  // The middle vert's eight faces: weighting by area is not the plain mean there.
+  EXPECT_EQ(total, 8);
+  EXPECT_GT(std::abs(weighted - plain_mean / total), 1.0);
 }
 
 TEST(Sizing, ObstacleMetricResolvesTheGapAlongTheSlope) {
