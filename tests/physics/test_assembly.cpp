@@ -89,6 +89,88 @@ TEST(Assembly, MatrixAndForcesAreTheElementTermsSummedDensely) {
   EXPECT_LE((assembled - assembled.transpose()).cwiseAbs().maxCoeff(), 1e-12 * a.cwiseAbs().maxCoeff());
 }
 
+// The assembled forces against central differences of the total elastic energy at `x_forces`,
+// and the assembled stiffness against central differences of those forces at `x_stiffness`,
+// where the element Hessians the assembler uses must be the exact ones. With v = 0, no gravity
+// and no damping the system is A = M + h^2 K, b = -h grad E.
+void expect_derivatives_of_the_energy(const ClothModel& model, const Eigen::VectorXd& x_forces, const Eigen::VectorXd& x_stiffness) {
+  const int64_t dim = 3 * static_cast<int64_t>(model.num_nodes);
+  const Eigen::VectorXd v = Eigen::VectorXd::Zero(dim);
+  StepParams p;
+  p.h = 0.01;
+  p.gravity = Vec3::Zero();
+  SystemAssembler assembler(model);
+  auto energy = [&](const Eigen::VectorXd& at) {
+    assembler.assemble(at, v, p);
+    return assembler.elastic_energy();
+  };
+  auto gradient = [&](const Eigen::VectorXd& at) {
+    assembler.assemble(at, v, p);
+    return Eigen::VectorXd(-assembler.rhs() / p.h);
+  };
+  // The derivative along coordinate k (evaluated into a value: f's results die with the call).
+  auto central = [&](const Eigen::VectorXd& at, int64_t k, const auto& f) {
+    const double eps = 1e-6;
+    Eigen::VectorXd plus = at, minus = at;
+    plus[k] += eps;
+    minus[k] -= eps;
+    const auto high = f(plus), low = f(minus);
+    return decltype(high)((high - low) / (2 * eps));
+  };
+  const Eigen::VectorXd g = gradient(x_forces);
+  Eigen::VectorXd fd_gradient(dim);
+  for (int64_t k = 0; k < dim; ++k) fd_gradient[k] = central(x_forces, k, energy);
+  EXPECT_GT(g.norm(), 1e-3 * g.size());  // away from equilibrium: the forces are not all zero
+  EXPECT_LE((g - fd_gradient).cwiseAbs().maxCoeff(), 1e-6 * g.cwiseAbs().maxCoeff());
+
+  assembler.assemble(x_stiffness, v, p);
+  Eigen::MatrixXd stiffness = Eigen::MatrixXd(assembler.matrix());
+  for (int32_t i = 0; i < model.num_nodes; ++i)
+    stiffness.block<3, 3>(3 * i, 3 * i) -= model.node_mass[static_cast<std::size_t>(i)] * Mat3::Identity();
+  stiffness /= p.h * p.h;
+  Eigen::MatrixXd fd_stiffness(dim, dim);
+  for (int64_t k = 0; k < dim; ++k) fd_stiffness.col(k) = central(x_stiffness, k, gradient);
+  EXPECT_LE((stiffness - fd_stiffness).cwiseAbs().maxCoeff(), 1e-5 * stiffness.cwiseAbs().maxCoeff());
+}
+
+// A wavy sheet whose bending rest angles are its own, scaled by `scale` in world space.
+Eigen::VectorXd wavy_sheet(Mesh& mesh, double scale) {
+  for (NodeId n : mesh.nodes()) {
+    Vec3 q = mesh.x(n);
+    q.y() += 0.03 * std::sin(9 * q.x()) + 0.02 * std::cos(7 * q.z());
+    mesh.x(n) = q;
+  }
+  set_rest_angles_from_world(mesh);
+  Eigen::VectorXd x(3 * mesh.num_nodes());
+  for (NodeId n : mesh.nodes()) x.segment<3>(3 * n.idx) = scale * mesh.x(n);
+  return x;
+}
+
+// Membranes stretched 3% (no stress clamped, so their PSD Hessian is the exact one), bending at
+// its rest angles (where its Gauss-Newton Hessian is exact).
+TEST(Assembly, ForcesAndStiffnessAreTheTotalEnergysDerivatives) {
+  Mesh mesh = build_mesh(make_grid(0.3, 0.2, 4, 3));
+  const Eigen::VectorXd x = wavy_sheet(mesh, 1.03);
+  ClothModel model;
+  append_garment(model, mesh, Material{});
+  expect_derivatives_of_the_energy(model, x, x);
+}
+
+// Bending alone, too weak to show beside the membranes above: its forces away from the rest
+// angles, its stiffness at them.
+TEST(Assembly, BendingForcesAndStiffnessAreTheTotalEnergysDerivatives) {
+  Mesh mesh = build_mesh(make_grid(0.3, 0.2, 4, 3));
+  const Eigen::VectorXd rest = wavy_sheet(mesh, 1.0);
+  Eigen::VectorXd bent = rest;
+  for (int64_t k = 1; k < bent.size(); k += 3) bent[k] += 0.01 * std::sin(5.0 * static_cast<double>(k));
+  Material bending_only;
+  bending_only.warp = bending_only.weft = bending_only.shear = bending_only.poisson = 0;
+  bending_only.bending = 1.0;  // N m: forces of order one
+  ClothModel model;
+  append_garment(model, mesh, bending_only);
+  expect_derivatives_of_the_energy(model, bent, rest);
+}
+
 TEST(Assembly, PatternHoldsExactlyTheNodePairsThatShareAnElement) {
   TwoSheets s;
   SystemAssembler assembler(s.model);
