@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iterator>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -26,6 +27,37 @@ namespace vdc {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A CSV file's lines split at every comma (a trailing empty cell kept).
+std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells(1);
+    for (const char c : line) {
+      if (c == ',') cells.emplace_back();
+      else cells.back() += c;
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// A CSV file's rows as cells named by its header; a row of another width is a failure.
+std::vector<std::map<std::string, std::string>> csv_rows(const fs::path& path) {
+  const std::vector<std::vector<std::string>> lines = read_csv(path);
+  std::vector<std::map<std::string, std::string>> rows;
+  if (lines.empty()) return rows;
+  const std::vector<std::string>& names = lines[0];
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    const std::vector<std::string>& cells = lines[k];
+    if (cells.size() != names.size()) ADD_FAILURE() << path << " row " << k << ": " << cells.size() << " cells where the header names " << names.size();
+    std::map<std::string, std::string> row;
+    for (std::size_t c = 0; c < std::min(cells.size(), names.size()); ++c) row[names[c]] = cells[c];
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
 
 class CliTest : public ::testing::Test {
  protected:
@@ -273,19 +305,14 @@ TEST_F(CliTest, RenderDrawsEachFrameAndARunComparedWithItselfMatchesExactly) {
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line, "frame,time,cloth_pixels_a,cloth_pixels_b,cloth_iou,mean_abs_diff");
-  int rows = 0;
-  while (std::getline(csv, line)) {
-    ++rows;
-    std::vector<std::string> cells;
-    std::stringstream cut(line);
-    for (std::string cell; std::getline(cut, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 6u) << line;
-    EXPECT_GT(std::stoi(cells[2]), 100) << "the sheet is in the picture: " << line;
-    EXPECT_EQ(cells[2], cells[3]) << line;
-    EXPECT_EQ(cells[4], "1") << line;
-    EXPECT_EQ(cells[5], "0") << line;
+  const auto rows = csv_rows(dir_ / "out" / "compare" / "compare.csv");
+  for (const auto& row : rows) {
+    EXPECT_GT(std::stoi(row.at("cloth_pixels_a")), 100) << "the sheet is in the picture at frame " << row.at("frame");
+    EXPECT_EQ(row.at("cloth_pixels_a"), row.at("cloth_pixels_b")) << row.at("frame");
+    EXPECT_EQ(row.at("cloth_iou"), "1") << row.at("frame");
+    EXPECT_EQ(row.at("mean_abs_diff"), "0") << row.at("frame");
   }
-  EXPECT_EQ(rows, 2);  // frames 0 and 2
+  EXPECT_EQ(rows.size(), 2u);  // frames 0 and 2
 }
 
 TEST_F(CliTest, RenderBadInputsExitTwoNamingTheProblem) {
@@ -584,29 +611,25 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line.rfind("scene,mode,status,frames,faces_min", 0), 0u);
-  int rows = 0;
-  while (std::getline(csv, line)) {
-    ++rows;
-    std::istringstream row(line);
-    std::vector<std::string> cells;
-    for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
-    ASSERT_EQ(cells.size(), 21u) << line;
-    EXPECT_EQ(cells[20], "2") << "every run compared with its fixed run over both frames: " << line;
-    EXPECT_EQ(cells[18], "3") << "frames 0, 1 and 2 checked: " << line;
-    EXPECT_EQ(cells[19], "0") << "no crossings: " << line;
-    EXPECT_GT(std::stod(cells[16]), 0) << "CPU seconds a frame: " << line;
-    EXPECT_GE(std::stod(cells[17]), 0) << "steal percent: " << line;
-    EXPECT_LE(std::stod(cells[17]), 100) << "steal percent: " << line;
-    EXPECT_EQ(cells[2], "done") << line;
-    EXPECT_EQ(cells[3], "2") << line;
-    if (cells[1] == "adaptive") {
-      EXPECT_EQ(cells[13], "1.00") << line;
+  const auto rows = csv_rows(out + "/table1.csv");
+  for (const auto& row : rows) {
+    const std::string run = row.at("scene") + " " + row.at("mode");
+    EXPECT_EQ(row.at("speedup_vs_fixed_frames"), "2") << "every run compared with its fixed run over both frames: " << run;
+    EXPECT_EQ(row.at("frames_checked"), "3") << "frames 0, 1 and 2 checked: " << run;
+    EXPECT_EQ(row.at("frames_with_crossings"), "0") << "no crossings: " << run;
+    EXPECT_GT(std::stod(row.at("cpu_seconds_per_frame")), 0) << run;
+    EXPECT_GE(std::stod(row.at("steal_percent")), 0) << run;
+    EXPECT_LE(std::stod(row.at("steal_percent")), 100) << run;
+    EXPECT_EQ(row.at("status"), "done") << run;
+    EXPECT_EQ(row.at("frames"), "2") << run;
+    if (row.at("mode") == "adaptive") {
+      EXPECT_EQ(row.at("speedup_vs_adaptive"), "1.00") << run;
     }
-    if (cells[0] == "dancers-10") {
-      EXPECT_EQ(std::stoi(cells[4]) % 2, 0) << "two identical sheets: " << line;
+    if (row.at("scene") == "dancers-10") {
+      EXPECT_EQ(std::stoi(row.at("faces_min")) % 2, 0) << "two identical sheets: " << run;
     }
   }
-  EXPECT_EQ(rows, 9);
+  EXPECT_EQ(rows.size(), 9u);
   std::ifstream md(out + "/table1.md");
   int clean_rows = 0;
   for (std::string l; std::getline(md, l);) clean_rows += l.find("| 0 of 3 |") != std::string::npos;
@@ -621,20 +644,6 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
 }
 
 // Rows of a CSV file cut into cells, empty cells kept (the header first).
-std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells(1);
-    for (const char c : line) {
-      if (c == ',') cells.emplace_back();
-      else cells.back() += c;
-    }
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 std::string first_line(const fs::path& path) {
   std::ifstream in(path);
   std::string line;
@@ -668,60 +677,54 @@ TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
   const fs::path dir = dir_ / "out" / "fidelity";
   EXPECT_FALSE(fs::exists(dir / "fidelity.csv.partial"));
   EXPECT_FALSE(fs::exists(dir / "fidelity_shots.csv.partial"));
-  const auto frames = read_csv(dir / "fidelity.csv");
-  ASSERT_EQ(frames.size(), 6u);
-  EXPECT_EQ(frames[0].size(), 13u);
+  const auto frames = csv_rows(dir / "fidelity.csv");
+  ASSERT_EQ(frames.size(), 5u);
   double most_popping = 0;
   for (int k = 0; k <= 4; ++k) {
-    const std::vector<std::string>& row = frames[static_cast<std::size_t>(k + 1)];
-    ASSERT_EQ(row.size(), 13u) << k;
-    EXPECT_EQ(row[0], std::to_string(k));
-    EXPECT_EQ(row[2], k < 2 ? "0" : "1") << "shot of frame " << k;
-    EXPECT_GT(std::stoi(row[3]), 300) << "the sheet is in the picture at frame " << k;
-    EXPECT_EQ(row[3], row[4]) << k;
-    EXPECT_EQ(row[5], "1") << k;
-    EXPECT_EQ(row[6], "1") << k;
-    EXPECT_EQ(row[7], row[8]) << k;
-    EXPECT_EQ(row[7], row[9]) << k;
+    const auto& row = frames[static_cast<std::size_t>(k)];
+    EXPECT_EQ(row.at("frame"), std::to_string(k));
+    EXPECT_EQ(row.at("shot"), k < 2 ? "0" : "1") << "shot of frame " << k;
+    EXPECT_GT(std::stoi(row.at("cloth_pixels_run")), 300) << "the sheet is in the picture at frame " << k;
+    EXPECT_EQ(row.at("cloth_pixels_run"), row.at("cloth_pixels_reference")) << k;
+    EXPECT_EQ(row.at("overlap"), "1") << k;
+    EXPECT_EQ(row.at("floor_overlap"), "1") << k;
+    EXPECT_EQ(row.at("detail_run"), row.at("detail_reference")) << k;
+    EXPECT_EQ(row.at("detail_run"), row.at("detail_floor")) << k;
     const bool first_of_shot = k == 0 || k == 2;
-    EXPECT_EQ(row[10].empty(), first_of_shot) << k;
-    EXPECT_EQ(row[10], row[11]) << k;
-    EXPECT_EQ(row[10], row[12]) << k;
-    if (!first_of_shot) most_popping = std::max(most_popping, std::stod(row[10]));
+    EXPECT_EQ(row.at("popping_run").empty(), first_of_shot) << k;
+    EXPECT_EQ(row.at("popping_run"), row.at("popping_reference")) << k;
+    EXPECT_EQ(row.at("popping_run"), row.at("popping_floor")) << k;
+    if (!first_of_shot) most_popping = std::max(most_popping, std::stod(row.at("popping_run")));
   }
   EXPECT_GT(most_popping, 0) << "the sheet falls";
-  EXPECT_GT(std::stod(frames[5][7]), 0) << "the hanging sheet curves";
+  EXPECT_GT(std::stod(frames[4].at("detail_run")), 0) << "the hanging sheet curves";
   EXPECT_EQ(first_line(dir / "fidelity.csv"), kFidelityFramesHeader);
   EXPECT_EQ(first_line(dir / "fidelity_shots.csv"), kFidelityShotsHeader);
-  const auto shots = read_csv(dir / "fidelity_shots.csv");
-  ASSERT_EQ(shots.size(), 4u);
-  EXPECT_EQ(shots[0].size(), 17u);
+  const auto shots = csv_rows(dir / "fidelity_shots.csv");
+  ASSERT_EQ(shots.size(), 3u);
   const std::vector<std::string> expect_shot{"0", "1", "all"}, expect_frames{"2", "3", "5"}, expect_pairs{"1", "2", "3"};
-  for (std::size_t k = 1; k < shots.size(); ++k) {
-    const std::vector<std::string>& row = shots[k];
-    ASSERT_EQ(row.size(), 17u) << k;
-    EXPECT_EQ(row[0], expect_shot[k - 1]);
-    EXPECT_EQ(row[3], expect_frames[k - 1]) << row[0];
-    EXPECT_EQ(row[4], "1") << row[0];
-    EXPECT_EQ(row[6], "1") << row[0];
-    EXPECT_EQ(row[10], "1") << row[0];
-    EXPECT_EQ(row[11], expect_pairs[k - 1]) << row[0];
-    EXPECT_EQ(row[14], "1") << row[0];
-    EXPECT_EQ(row[15], "pass") << row[0];
-    EXPECT_EQ(row[16], "") << row[0];
+  for (std::size_t k = 0; k < shots.size(); ++k) {
+    const auto& row = shots[k];
+    EXPECT_EQ(row.at("shot"), expect_shot[k]);
+    EXPECT_EQ(row.at("frames"), expect_frames[k]) << row.at("shot");
+    EXPECT_EQ(row.at("overlap_mean"), "1") << row.at("shot");
+    EXPECT_EQ(row.at("floor_overlap_mean"), "1") << row.at("shot");
+    EXPECT_EQ(row.at("detail_ratio"), "1") << row.at("shot");
+    EXPECT_EQ(row.at("popping_pairs"), expect_pairs[k]) << row.at("shot");
+    EXPECT_EQ(row.at("popping_ratio"), "1") << row.at("shot");
+    EXPECT_EQ(row.at("verdict"), "pass") << row.at("shot");
+    EXPECT_EQ(row.at("failed"), "") << row.at("shot");
   }
   // Every other frame: frame 4's popping is measured from frame 3, drawn for it, as above.
   const fs::path every = dir_ / "every2";
   ASSERT_EQ(run({"fidelity", path, out_dir(), out_dir(), "--every", "2", "--scale", "1", "--out", every.string()}), kExitOk) << err_.str();
-  const auto sparse = read_csv(every / "fidelity.csv");
-  ASSERT_EQ(sparse.size(), 4u);
-  EXPECT_EQ(sparse[0].size(), 13u);
-  EXPECT_EQ(sparse[0][0] + "," + sparse[0][1], "frame,time");
-  EXPECT_EQ(sparse[2][0], "2");
-  EXPECT_EQ(sparse[2][10], "") << "frame 2 starts shot 1";
-  EXPECT_EQ(sparse[3][0], "4");
-  EXPECT_EQ(sparse[3][10], frames[5][10]);
-  EXPECT_EQ(sparse[3][6], "") << "no floor";
+  const auto sparse = csv_rows(every / "fidelity.csv");
+  ASSERT_EQ(sparse.size(), 3u);
+  EXPECT_EQ(sparse[1].at("frame"), "2");
+  EXPECT_EQ(sparse[1].at("popping_run"), "") << "frame 2 starts shot 1";
+  EXPECT_EQ(sparse[2].at("frame"), "4");
+  EXPECT_EQ(sparse[2].at("popping_run"), frames[4].at("popping_run"));
+  EXPECT_EQ(sparse[2].at("floor_overlap"), "") << "no floor";
 }
 
 // Two flat rectangles facing a still camera, in a scene without gravity (the run keeps them
@@ -775,12 +778,12 @@ TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHan
   // Without a floor the overlap is not judged; nothing moves in either run (popping 0 / 0).
   const fs::path plain = dir_ / "plain", floored = dir_ / "floored";
   ASSERT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--scale", "1", "--out", plain.string()}), kExitOk) << out_.str() << err_.str();
-  const auto rows = read_csv(plain / "fidelity.csv");
-  ASSERT_EQ(rows.size(), 4u);
-  for (std::size_t k = 1; k < rows.size(); ++k) {
-    EXPECT_EQ(rows[k][3], "864") << k;
-    EXPECT_EQ(rows[k][4], "864") << k;
-    EXPECT_NEAR(std::stod(rows[k][5]), 31.0 / 41.0, 1e-6) << k;
+  const auto rows = csv_rows(plain / "fidelity.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("cloth_pixels_run"), "864") << row.at("frame");
+    EXPECT_EQ(row.at("cloth_pixels_reference"), "864") << row.at("frame");
+    EXPECT_NEAR(std::stod(row.at("overlap")), 31.0 / 41.0, 1e-6) << row.at("frame");
   }
   // Against the unmoved run as the floor (overlap 1), both overlap targets fail: exit status 3.
   EXPECT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--floor", out_dir(), "--scale", "1", "--out", floored.string()}),
@@ -788,11 +791,11 @@ TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHan
       << out_.str() << err_.str();
   EXPECT_NE(out_.str().find("overlap 0.756 mean / 0.756 min (floor 1.000 / 1.000)"), std::string::npos) << out_.str();
   EXPECT_NE(out_.str().find(": fail (overlap mean, overlap min)"), std::string::npos) << out_.str();
-  const auto shots = read_csv(floored / "fidelity_shots.csv");
-  ASSERT_EQ(shots.size(), 3u);
-  EXPECT_EQ(shots[2][0], "all");
-  EXPECT_EQ(shots[2][15], "fail");
-  EXPECT_EQ(shots[2][16], "overlap mean;overlap min");
+  const auto shots = csv_rows(floored / "fidelity_shots.csv");
+  ASSERT_EQ(shots.size(), 2u);
+  EXPECT_EQ(shots[1].at("shot"), "all");
+  EXPECT_EQ(shots[1].at("verdict"), "fail");
+  EXPECT_EQ(shots[1].at("failed"), "overlap mean;overlap min");
 }
 
 TEST_F(CliTest, FidelityBadInputsExitTwoAndWriteNothing) {
