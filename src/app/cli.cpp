@@ -31,7 +31,7 @@ const char* kMainHelp =
     "\n"
     "usage:\n"
     "  vdcloth run SCENE.json [options]   simulate a scene\n"
-    "  vdcloth bench table1 [options]     the seed paper's Table 1 on the project's scenes\n"
+    "  vdcloth bench table1 [options]     Koh et al. 2014's Table 1 on the project's scenes\n"
     "  vdcloth render SCENE.json RUN_DIR  pictures of a run through the scene's camera; with\n"
     "                 [options]           --compare, two runs side by side and their differences\n"
     "  vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [options]\n"

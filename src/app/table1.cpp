@@ -245,7 +245,7 @@ void write_tables(const std::vector<Run>& runs, const Table1Args& args, int thre
        << (cpu_per_frame > 0 ? fixed_cell(cpu_per_frame, 3) : "") << " | " << (r.steal < 0 ? "" : fixed_cell(100 * r.steal, 1) + "%") << " | "
        << check_cell(r) << " |\n";
   }
-  // Per frame, adaptive against view (the data of the seed paper's Figure 5).
+  // Per frame, adaptive against view (the data of Koh et al. 2014's Figure 5).
   std::vector<std::string> scenes;
   for (const Run& r : runs)
     if (std::find(scenes.begin(), scenes.end(), r.scene) == scenes.end()) scenes.push_back(r.scene);

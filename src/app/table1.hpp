@@ -1,4 +1,4 @@
-// `vdcloth bench table1`: the seed paper's Table 1 (its three shots, each non-adaptive,
+// `vdcloth bench table1`: Koh et al. 2014's Table 1 (its three shots, each non-adaptive,
 // adaptive and view-dependent) on the project's own scenes. Each run is a child `vdcloth run`
 // process, so that its peak memory is its own and a failed run does not end the others.
 #pragma once

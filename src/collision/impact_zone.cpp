@@ -16,7 +16,7 @@ double separation(const ImpactConstraint& c, const std::vector<Vec3>& x) {
 }
 
 ProjectionReport project_impact_zone(std::vector<Vec3>& x, const std::vector<double>& mass,
-                                     const std::vector<ImpactConstraint>& constraints, double thickness, double tolerance,
+                                     const std::vector<ImpactConstraint>& constraints, double min_separation, double tolerance,
                                      int max_iterations) {
   // min 1/2 sum m |x - x0|^2 subject to g_i(x) = n_i . sum_j w_ij x_j - h >= 0. With multipliers
   // lambda_i >= 0, x = x0 + M^-1 sum_i lambda_i grad g_i; Gauss-Seidel raises or lowers one
@@ -35,7 +35,7 @@ ProjectionReport project_impact_zone(std::vector<Vec3>& x, const std::vector<dou
     double worst = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < constraints.size(); ++i) {
       const ImpactConstraint& c = constraints[i];
-      const double violation = thickness - separation(c, x);
+      const double violation = min_separation - separation(c, x);
       worst = std::max(worst, violation);
       const double delta = std::max(violation * inv_k[i], -lambda[i]);
       if (delta == 0) continue;
@@ -53,7 +53,7 @@ ProjectionReport project_impact_zone(std::vector<Vec3>& x, const std::vector<dou
   }
   // The last sweep changed x: measure the final state.
   rep.worst_violation = -std::numeric_limits<double>::infinity();
-  for (const auto& c : constraints) rep.worst_violation = std::max(rep.worst_violation, thickness - separation(c, x));
+  for (const auto& c : constraints) rep.worst_violation = std::max(rep.worst_violation, min_separation - separation(c, x));
   rep.converged = rep.worst_violation <= tolerance;
   return rep;
 }

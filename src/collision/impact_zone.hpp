@@ -35,10 +35,11 @@ struct ProjectionReport {
 // Separation of constraint c at positions x: normal . sum_j w_j x_j.
 double separation(const ImpactConstraint& c, const std::vector<Vec3>& x);
 
-// Projects positions x (masses m, all > 0) onto {separation >= thickness for every constraint}
-// by projected Gauss-Seidel on the dual variables, up to `tolerance` metres of violation.
+// Projects positions x (masses m, all > 0) onto {separation >= min_separation for every
+// constraint} by projected Gauss-Seidel on the dual variables, up to `tolerance` metres of
+// violation.
 ProjectionReport project_impact_zone(std::vector<Vec3>& x, const std::vector<double>& mass,
-                                     const std::vector<ImpactConstraint>& constraints, double thickness, double tolerance,
+                                     const std::vector<ImpactConstraint>& constraints, double min_separation, double tolerance,
                                      int max_iterations = 200);
 
 }  // namespace vdc

@@ -1,4 +1,4 @@
-// Remeshing loop (Narain et al. 2012, section 4; edge metric eq. 1 of the seed paper).
+// Remeshing loop (Narain et al. 2012, section 4; edge metric eq. 1 of Koh et al. 2014).
 #include "remesh/remesher.hpp"
 
 #include <algorithm>

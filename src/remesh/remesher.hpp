@@ -1,5 +1,5 @@
 // The remeshing loop of Narain et al. 2012 (section 4) for a given sizing field: split every
-// invalid edge (s^2 > 1, eq. 1 of the seed paper), largest first; flip to an anisotropically
+// invalid edge (s^2 > 1, eq. 1 of Koh et al. 2014), largest first; flip to an anisotropically
 // Delaunay mesh; collapse every edge whose removal leaves no edge above 1 - margin.
 #pragma once
 #include "core/mesh.hpp"

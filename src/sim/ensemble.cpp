@@ -108,9 +108,9 @@ int Ensemble::num_faces() const {
   return n;
 }
 
-int Ensemble::num_vertices() const {
+int Ensemble::num_nodes() const {
   int n = 0;
-  for (const auto& p : parts_) n += p->num_vertices();
+  for (const auto& p : parts_) n += p->num_nodes();
   return n;
 }
 

@@ -1,5 +1,5 @@
 // A scene run as independent simulations, one per garment group (split_groups), stepped in
-// parallel: a crowd whose characters each wear their own garments, as in the seed paper's
+// parallel: a crowd whose characters each wear their own garments, as in Koh et al. 2014's
 // ten-dancer shot, costs the sum of its members and uses every core.
 #pragma once
 #include <memory>
@@ -32,7 +32,7 @@ class Ensemble {
   const SimOptions& options() const { return options_; }
   int frame() const { return parts_.front()->frame(); }
   int num_faces() const;
-  int num_vertices() const;
+  int num_nodes() const;  // cloth nodes (a seam's two sides share one): stats.csv's `vertices`
 
  private:
   // Splits the scene into its parts and builds them in parallel, each by make(k, its scene, its

@@ -472,7 +472,7 @@ FrameStats Simulation::step_frame() {
   place_obstacles();
   stats.frame = frame_;
   stats.faces = num_faces();
-  stats.vertices = num_vertices();
+  stats.vertices = num_nodes();
   stats.energy = energy();
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return stats;
@@ -484,7 +484,7 @@ int Simulation::num_faces() const {
   return n;
 }
 
-int Simulation::num_vertices() const {
+int Simulation::num_nodes() const {
   int n = 0;
   for (const auto& g : scene_.garments) n += g.mesh.num_nodes();
   return n;

@@ -21,7 +21,7 @@ class ViewSizing;
 
 enum class SimMode { Fixed, Adaptive, View };
 
-// Face attribute (double) holding each face's view factor in view mode (seed paper, eq. 4
+// Face attribute (double) holding each face's view factor in view mode (Koh et al. 2014, eq. 4
 // after silhouette resampling), carried through remeshing to the frame's output.
 inline constexpr const char* kViewFactorAttr = "view_factor";
 bool parse_sim_mode(const std::string& name, SimMode& mode);
@@ -93,7 +93,7 @@ class Simulation {
   const SimOptions& options() const { return options_; }
   EnergyReport energy() const;
   int num_faces() const;
-  int num_vertices() const;
+  int num_nodes() const;  // cloth nodes (a seam's two sides share one): stats.csv's `vertices`
 
  private:
   void rebuild();                       // elements, assembler and solver from the meshes

@@ -1,4 +1,4 @@
-// View factors (seed paper, eqs. 3 and 4, section 3.3).
+// View factors (Koh et al. 2014, eqs. 3 and 4, section 3.3).
 #include "view/view_factor.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
-// View factors of the seed paper (view-dependent adaptive cloth simulation, section 3.1 and
-// 3.3): per face, how much of the physical resolution the camera needs. Spatial smoothing (eq.
+// View factors (Koh, Narain and O'Brien, "View-Dependent Adaptive Cloth Simulation", SCA 2014,
+// sections 3.1 and 3.3): per face, how much of the physical resolution the camera needs. Spatial smoothing (eq.
 // 3) by the distance to the view frustum, temporal smoothing with anticipation (eq. 4) over the
 // camera's future, and silhouette resampling across edges where the factor jumps.
 #pragma once

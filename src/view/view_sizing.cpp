@@ -1,4 +1,4 @@
-// View-dependent sizing field (seed paper, eqs. 2 and 5 to 8).
+// View-dependent sizing field (Koh et al. 2014, eqs. 2 and 5 to 8).
 #include "view/view_sizing.hpp"
 
 #include <Eigen/Eigenvalues>

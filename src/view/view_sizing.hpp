@@ -1,4 +1,5 @@
-// View-dependent sizing (seed paper, section 3): the camera's modification of the physical
+// View-dependent sizing (Koh, Narain and O'Brien, "View-Dependent Adaptive Cloth Simulation",
+// SCA 2014, section 3): the camera's modification of the physical
 // sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
 // face's view factor (eqs. 3 and 4, then silhouette resampling); modify() scales the physical
 // tensors by v^2 (eq. 2) but never below the velocity criterion (what the camera does not see

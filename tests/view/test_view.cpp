@@ -1,4 +1,4 @@
-// View-dependent sizing, one test per equation of the seed paper's section 3 on hand-built
+// View-dependent sizing, one test per equation of Koh et al. 2014's section 3 on hand-built
 // configurations with analytic answers.
 #include <gtest/gtest.h>
 
