@@ -8,6 +8,7 @@
 #include "core/mesh_build.hpp"
 #include "physics/assembly.hpp"
 #include "physics/cloth_model.hpp"
+#include "support/finite_difference.hpp"
 
 namespace vdc {
 namespace {
@@ -108,18 +109,8 @@ void expect_derivatives_of_the_energy(const ClothModel& model, const Eigen::Vect
     assembler.assemble(at, v, p);
     return Eigen::VectorXd(-assembler.rhs() / p.h);
   };
-  // The derivative along coordinate k (evaluated into a value: f's results die with the call).
-  auto central = [&](const Eigen::VectorXd& at, int64_t k, const auto& f) {
-    const double eps = 1e-6;
-    Eigen::VectorXd plus = at, minus = at;
-    plus[k] += eps;
-    minus[k] -= eps;
-    const auto high = f(plus), low = f(minus);
-    return decltype(high)((high - low) / (2 * eps));
-  };
   const Eigen::VectorXd g = gradient(x_forces);
-  Eigen::VectorXd fd_gradient(dim);
-  for (int64_t k = 0; k < dim; ++k) fd_gradient[k] = central(x_forces, k, energy);
+  const Eigen::VectorXd fd_gradient = test::central_differences(energy, x_forces, 1e-6);
   EXPECT_GT(g.norm(), 1e-3 * g.size());  // away from equilibrium: the forces are not all zero
   EXPECT_LE((g - fd_gradient).cwiseAbs().maxCoeff(), 1e-6 * g.cwiseAbs().maxCoeff());
 
@@ -128,8 +119,7 @@ void expect_derivatives_of_the_energy(const ClothModel& model, const Eigen::Vect
   for (int32_t i = 0; i < model.num_nodes; ++i)
     stiffness.block<3, 3>(3 * i, 3 * i) -= model.node_mass[static_cast<std::size_t>(i)] * Mat3::Identity();
   stiffness /= p.h * p.h;
-  Eigen::MatrixXd fd_stiffness(dim, dim);
-  for (int64_t k = 0; k < dim; ++k) fd_stiffness.col(k) = central(x_stiffness, k, gradient);
+  const Eigen::MatrixXd fd_stiffness = test::central_differences(gradient, x_stiffness, 1e-6);
   EXPECT_LE((stiffness - fd_stiffness).cwiseAbs().maxCoeff(), 1e-5 * stiffness.cwiseAbs().maxCoeff());
 }
 

@@ -10,6 +10,7 @@
 #include "physics/bending.hpp"
 #include "physics/cloth_model.hpp"
 #include "physics/psd.hpp"
+#include "support/finite_difference.hpp"
 
 namespace vdc {
 namespace {
@@ -48,14 +49,8 @@ TEST(Bending, AngleGradientMatchesFiniteDifferences) {
   std::mt19937 rng(5);
   for (int trial = 0; trial < 50; ++trial) {
     BendStencil x = random_stencil(rng);
-    VecN<12> g = dihedral_angle_gradient(x), fd, q = flatten(x);
-    const double eps = 1e-7;
-    for (int i = 0; i < 12; ++i) {
-      VecN<12> qp = q, qm = q;
-      qp[i] += eps;
-      qm[i] -= eps;
-      fd[i] = (dihedral_angle(unflatten(qp)) - dihedral_angle(unflatten(qm))) / (2 * eps);
-    }
+    const VecN<12> g = dihedral_angle_gradient(x);
+    const Eigen::VectorXd fd = test::central_differences([](const VecN<12>& q) { return dihedral_angle(unflatten(q)); }, flatten(x), 1e-7);
     EXPECT_LT((g - fd).norm() / g.norm(), 1e-5) << "trial " << trial;
   }
 }
@@ -66,16 +61,10 @@ TEST(Bending, EnergyGradientAndHessianMatchFiniteDifferences) {
   for (int trial = 0; trial < 50; ++trial) {
     BendStencil x = random_stencil(rng);
     BendingElement b{0.3 * U(rng), bending_coefficient(1e-5, 0.05, 1e-3, 1.2e-3)};
-    VecN<12> g = bending_gradient(x, b), gfd, q = flatten(x);
-    MatN<12> h = bending_hessian(x, b), hfd;
-    const double eps = 1e-7;
-    for (int i = 0; i < 12; ++i) {
-      VecN<12> qp = q, qm = q;
-      qp[i] += eps;
-      qm[i] -= eps;
-      gfd[i] = (bending_energy(unflatten(qp), b) - bending_energy(unflatten(qm), b)) / (2 * eps);
-      hfd.col(i) = (bending_gradient(unflatten(qp), b) - bending_gradient(unflatten(qm), b)) / (2 * eps);
-    }
+    const VecN<12> g = bending_gradient(x, b);
+    const MatN<12> h = bending_hessian(x, b);
+    const Eigen::VectorXd gfd = test::central_differences([&](const VecN<12>& q) { return bending_energy(unflatten(q), b); }, flatten(x), 1e-7);
+    const Eigen::MatrixXd hfd = test::central_differences([&](const VecN<12>& q) { return bending_gradient(unflatten(q), b); }, flatten(x), 1e-7);
     EXPECT_LT((g - gfd).norm() / g.norm(), 1e-5) << "trial " << trial;
     EXPECT_LT((h - hfd).norm() / h.norm(), 1e-4) << "trial " << trial;
   }

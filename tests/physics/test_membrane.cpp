@@ -7,6 +7,7 @@
 
 #include "physics/membrane.hpp"
 #include "physics/psd.hpp"
+#include "support/finite_difference.hpp"
 
 namespace vdc {
 namespace {
@@ -45,15 +46,9 @@ TEST(Membrane, GradientMatchesFiniteDifferences) {
   std::mt19937 rng(1);
   for (int trial = 0; trial < 50; ++trial) {
     auto [x, m] = random_membrane(rng);
-    VecN<9> g = membrane_gradient(x, m), fd;
-    VecN<9> q = flatten(x);
-    const double eps = 1e-7;
-    for (int i = 0; i < 9; ++i) {
-      VecN<9> qp = q, qm = q;
-      qp[i] += eps;
-      qm[i] -= eps;
-      fd[i] = (membrane_energy(unflatten(qp), m) - membrane_energy(unflatten(qm), m)) / (2 * eps);
-    }
+    const VecN<9> g = membrane_gradient(x, m);
+    const Eigen::VectorXd fd =
+        test::central_differences([&](const VecN<9>& q) { return membrane_energy(unflatten(q), m); }, flatten(x), 1e-7);
     EXPECT_LT((g - fd).norm() / g.norm(), 1e-5) << "trial " << trial;
   }
 }
@@ -62,15 +57,9 @@ TEST(Membrane, HessianMatchesFiniteDifferences) {
   std::mt19937 rng(2);
   for (int trial = 0; trial < 50; ++trial) {
     auto [x, m] = random_membrane(rng);
-    MatN<9> h = membrane_hessian(x, m), fd;
-    VecN<9> q = flatten(x);
-    const double eps = 1e-6;
-    for (int i = 0; i < 9; ++i) {
-      VecN<9> qp = q, qm = q;
-      qp[i] += eps;
-      qm[i] -= eps;
-      fd.col(i) = (membrane_gradient(unflatten(qp), m) - membrane_gradient(unflatten(qm), m)) / (2 * eps);
-    }
+    const MatN<9> h = membrane_hessian(x, m);
+    const Eigen::MatrixXd fd =
+        test::central_differences([&](const VecN<9>& q) { return membrane_gradient(unflatten(q), m); }, flatten(x), 1e-6);
     EXPECT_LT((h - fd).norm() / h.norm(), 1e-4) << "trial " << trial;
   }
 }

@@ -10,6 +10,7 @@
 #include "scene/body.hpp"
 #include "scene/figure.hpp"
 #include "scene/garments.hpp"
+#include "support/triangle_soup.hpp"
 
 namespace vdc {
 namespace {
@@ -35,11 +36,8 @@ TEST(Garments, DressIsSewnClosedAndClearOfTheBody) {
       static_cast<int>(std::round(std::hypot(params.waist_height - params.hem_height, params.hem_radius - params.bodice_radius) / params.cell));
   EXPECT_EQ(seam_nodes, (rows_bodice + 1) + rows_skirt + (params.around - 1) + 12);
 
-  std::vector<std::array<int32_t, 3>> faces;
-  std::vector<Vec3> x(static_cast<std::size_t>(dress.node_capacity()));
-  for (NodeId v : dress.nodes()) x[static_cast<std::size_t>(v.idx)] = dress.x(v);
-  for (FaceId f : dress.faces()) faces.push_back({dress.face_node(f, 0).idx, dress.face_node(f, 1).idx, dress.face_node(f, 2).idx});
-  EXPECT_EQ(count_self_intersections(faces, x), 0);
+  const test::TriangleSoup soup = test::triangle_soup(dress);
+  EXPECT_EQ(count_self_intersections(soup.faces, soup.x), 0);
 
   // The figure's body in its rest pose: no dress vertex within 5 mm of it, no face through it.
   Motion rest;
@@ -64,7 +62,7 @@ TEST(Garments, DressIsSewnClosedAndClearOfTheBody) {
   EXPECT_GT(closest, 0.005);
   std::vector<std::array<int32_t, 3>> body_faces;
   for (const auto& f : b.faces) body_faces.push_back({f[0].node, f[1].node, f[2].node});
-  const int crossings = count_intersections_between(faces, x, body_faces, b.positions);
+  const int crossings = count_intersections_between(soup.faces, soup.x, body_faces, b.positions);
   EXPECT_EQ(crossings, 0);
   std::cout << "dress: " << dress.num_faces() << " faces, closest to the body " << closest * 1000 << " mm\n";
 }

@@ -3,9 +3,9 @@
 // no two cloth triangles intersecting).
 #include <gtest/gtest.h>
 
-#include "collision/intersection.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/triangle_soup.hpp"
 
 namespace vdc {
 namespace {
@@ -31,14 +31,8 @@ TEST(AdaptiveSphere, RefinesOverTheSphereCoarseWhereFlatAndNeverIntersects) {
     // The icosphere's faces lie at least radius cos(0.2) (its largest face angle) from the
     // centre: closer than that, less 10% of the thickness, is inside.
     const double inner = radius * std::cos(0.2) - 0.1 * thickness;
-    std::vector<Vec3> x(static_cast<std::size_t>(cloth.node_capacity()));
-    std::vector<std::array<int32_t, 3>> faces;
-    for (NodeId n : cloth.nodes()) {
-      x[static_cast<std::size_t>(n.idx)] = cloth.x(n);
-      ASSERT_GT((cloth.x(n) - centre).norm(), inner) << "frame " << s.frame << " node " << n.idx;
-    }
-    for (FaceId face : cloth.faces()) faces.push_back({cloth.face_node(face, 0).idx, cloth.face_node(face, 1).idx, cloth.face_node(face, 2).idx});
-    ASSERT_EQ(count_self_intersections(faces, x), 0) << "frame " << s.frame;
+    for (NodeId n : cloth.nodes()) ASSERT_GT((cloth.x(n) - centre).norm(), inner) << "frame " << s.frame << " node " << n.idx;
+    ASSERT_EQ(test::self_crossings(cloth), 0) << "frame " << s.frame;
     if (s.frame == 100 || s.frame == 125) {
       // Mean material area of faces within 5 cm of the sphere against faces farther than 25 cm.
       double near = 0, far = 0;

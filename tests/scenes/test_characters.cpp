@@ -8,38 +8,24 @@
 #include <string>
 
 #include "collision/distance.hpp"
-#include "collision/intersection.hpp"
 #include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
+#include "support/triangle_soup.hpp"
 
 namespace vdc {
 namespace {
-
-std::vector<std::array<int32_t, 3>> face_nodes(const Mesh& m) {
-  std::vector<std::array<int32_t, 3>> faces;
-  for (FaceId f : m.faces()) faces.push_back({m.face_node(f, 0).idx, m.face_node(f, 1).idx, m.face_node(f, 2).idx});
-  return faces;
-}
-
-std::vector<Vec3> positions(const Mesh& m) {
-  std::vector<Vec3> x(static_cast<std::size_t>(m.node_capacity()));
-  for (NodeId n : m.nodes()) x[static_cast<std::size_t>(n.idx)] = m.x(n);
-  return x;
-}
-
-int crossings(const Mesh& a, const Mesh& b) { return count_intersections_between(face_nodes(a), positions(a), face_nodes(b), positions(b)); }
 
 // Every crossing in one part of a run: each garment against its bodies, the other garments and
 // itself. Returns a description of the first, or "" when there is none.
 std::string first_crossing(const Scene& part) {
   for (std::size_t i = 0; i < part.garments.size(); ++i) {
     const GarmentSpec& g = part.garments[i];
-    if (const int n = count_self_intersections(face_nodes(g.mesh), positions(g.mesh)))
+    if (const int n = test::self_crossings(g.mesh))
       return g.name + " crosses itself (" + std::to_string(n) + " face pairs)";
     for (const ObstacleSpec& o : part.obstacles)
-      if (const int n = crossings(g.mesh, o.mesh)) return g.name + " crosses " + o.name + " (" + std::to_string(n) + " face pairs)";
+      if (const int n = test::crossings_between(g.mesh, o.mesh)) return g.name + " crosses " + o.name + " (" + std::to_string(n) + " face pairs)";
     for (std::size_t j = i + 1; j < part.garments.size(); ++j)
-      if (const int n = crossings(g.mesh, part.garments[j].mesh))
+      if (const int n = test::crossings_between(g.mesh, part.garments[j].mesh))
         return g.name + " crosses " + part.garments[j].name + " (" + std::to_string(n) + " face pairs)";
   }
   return "";

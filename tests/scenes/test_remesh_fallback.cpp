@@ -11,27 +11,14 @@
 #include <iomanip>
 #include <sstream>
 
-#include "collision/intersection.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/triangle_soup.hpp"
 
 namespace vdc {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Soup {
-  std::vector<std::array<int32_t, 3>> faces;
-  std::vector<Vec3> x;
-};
-
-Soup soup(const Mesh& m) {
-  Soup s;
-  s.x.resize(static_cast<std::size_t>(m.node_capacity()), Vec3::Zero());
-  for (NodeId n : m.nodes()) s.x[static_cast<std::size_t>(n.idx)] = m.x(n);
-  for (FaceId f : m.faces()) s.faces.push_back({m.face_node(f, 0).idx, m.face_node(f, 1).idx, m.face_node(f, 2).idx});
-  return s;
-}
 
 // A 20 cm square of cloth wrapped onto a sphere of 10 cm radius (distances from the square's
 // centre kept along each meridian, 6 mm off the surface), in 10 x 10 cells of 2 cm: chords that
@@ -75,8 +62,8 @@ TEST(RemeshFallback, CrossingsUntanglingCannotRemoveMakeTheFrameKeepItsStartMesh
   scene.collision.untangle_iterations = 0;  // detection only: any crossing left by a remesh stays
   Simulation sim(std::move(scene), SimOptions{SimMode::Adaptive, 1});
   auto crossings = [&] {
-    const Soup cloth = soup(sim.scene().garments[0].mesh), sphere = soup(sim.scene().obstacles[0].mesh);
-    return count_self_intersections(cloth.faces, cloth.x) + count_intersections_between(cloth.faces, cloth.x, sphere.faces, sphere.x);
+    const Mesh& cloth = sim.scene().garments[0].mesh;
+    return test::self_crossings(cloth) + test::crossings_between(cloth, sim.scene().obstacles[0].mesh);
   };
   ASSERT_EQ(crossings(), 0) << "the wrapped cap starts clear of the sphere";
   const int faces_before = sim.num_faces();

@@ -3,9 +3,9 @@
 // fail and the fallbacks take over.
 #include <gtest/gtest.h>
 
-#include "collision/intersection.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/triangle_soup.hpp"
 
 namespace vdc {
 namespace {
@@ -27,16 +27,12 @@ FoldRun run_sheet_fold(Scene scene, int frames) {
     run.fallbacks += s.collision_fallbacks;
     run.halvings += s.halvings;
     const Mesh& m = sim.scene().garments[0].mesh;
-    std::vector<Vec3> x(static_cast<std::size_t>(m.node_capacity()));
-    std::vector<std::array<int32_t, 3>> faces;
     double top = -1e9;
     for (NodeId n : m.nodes()) {
-      x[static_cast<std::size_t>(n.idx)] = m.x(n);
       EXPECT_GE(m.x(n).y(), -0.1 * thickness) << "frame " << s.frame << ": a vertex is in the ground";
       top = std::max(top, m.x(n).y());
     }
-    for (FaceId face : m.faces()) faces.push_back({m.face_node(face, 0).idx, m.face_node(face, 1).idx, m.face_node(face, 2).idx});
-    EXPECT_EQ(count_self_intersections(faces, x), 0) << "frame " << s.frame;
+    EXPECT_EQ(test::self_crossings(m), 0) << "frame " << s.frame;
     run.lowest_top = std::min(run.lowest_top, top);
     if (::testing::Test::HasFailure()) break;
   }

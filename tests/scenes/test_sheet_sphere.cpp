@@ -3,9 +3,9 @@
 // two cloth triangles that share no node may intersect.
 #include <gtest/gtest.h>
 
-#include "collision/intersection.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
+#include "support/triangle_soup.hpp"
 
 namespace vdc {
 namespace {
@@ -35,14 +35,9 @@ TEST(SheetSphere, NothingInsideTheSphereAndNoSelfIntersectionAtAnyFrameEnd) {
     EXPECT_EQ(s.collision_fallbacks, 0) << "frame " << s.frame;
     const Mesh& cloth = sim.scene().garments[0].mesh;
     const Mesh& sphere = sim.scene().obstacles[0].mesh;
-    std::vector<Vec3> x(static_cast<std::size_t>(cloth.node_capacity()));
-    std::vector<std::array<int32_t, 3>> faces;
-    for (NodeId n : cloth.nodes()) {
-      x[static_cast<std::size_t>(n.idx)] = cloth.x(n);
+    for (NodeId n : cloth.nodes())
       ASSERT_LE(depth_inside_convex(sphere, cloth.x(n)), 0.1 * thickness) << "frame " << s.frame << " node " << n.idx;
-    }
-    for (FaceId face : cloth.faces()) faces.push_back({cloth.face_node(face, 0).idx, cloth.face_node(face, 1).idx, cloth.face_node(face, 2).idx});
-    ASSERT_EQ(count_self_intersections(faces, x), 0) << "frame " << s.frame;
+    ASSERT_EQ(test::self_crossings(cloth), 0) << "frame " << s.frame;
   }
   EXPECT_GT(contacts, 1000);  // the sphere did meet the sheet (proximity pairs and impacts, summed over frames)
 }
@@ -65,17 +60,8 @@ TEST(SheetSphere, FramesWhoseZonesFellBackEndWithNoCrossings) {
     fallbacks += s.collision_fallbacks;
     const Mesh& cloth = sim.scene().garments[0].mesh;
     const Mesh& sphere = sim.scene().obstacles[0].mesh;
-    auto soup = [](const Mesh& m, std::vector<Vec3>& x, std::vector<std::array<int32_t, 3>>& faces) {
-      x.assign(static_cast<std::size_t>(m.node_capacity()), Vec3::Zero());
-      for (NodeId n : m.nodes()) x[static_cast<std::size_t>(n.idx)] = m.x(n);
-      for (FaceId face : m.faces()) faces.push_back({m.face_node(face, 0).idx, m.face_node(face, 1).idx, m.face_node(face, 2).idx});
-    };
-    std::vector<Vec3> cx, sx;
-    std::vector<std::array<int32_t, 3>> cf, sf;
-    soup(cloth, cx, cf);
-    soup(sphere, sx, sf);
-    ASSERT_EQ(count_intersections_between(cf, cx, sf, sx), 0) << "frame " << s.frame << " (" << fallbacks << " fallbacks so far)";
-    ASSERT_EQ(count_self_intersections(cf, cx), 0) << "frame " << s.frame;
+    ASSERT_EQ(test::crossings_between(cloth, sphere), 0) << "frame " << s.frame << " (" << fallbacks << " fallbacks so far)";
+    ASSERT_EQ(test::self_crossings(cloth), 0) << "frame " << s.frame;
   }
   EXPECT_GT(fallbacks, 0);
 }
