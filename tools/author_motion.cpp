@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "io/bvh_motion.hpp"
+#include "scene/bvh_motion.hpp"
 #include "scene/figure.hpp"
 
 int main(int argc, char** argv) {

@@ -8,7 +8,7 @@
 #include "collision/intersection.hpp"
 #include "core/error.hpp"
 #include "io/obj.hpp"
-#include "io/run_output.hpp"
+#include "output/run_output.hpp"
 
 namespace vdc {
 

@@ -15,8 +15,8 @@
 #include <thread>
 
 #include "core/error.hpp"
-#include "io/checkpoint.hpp"
-#include "io/run_output.hpp"
+#include "output/checkpoint.hpp"
+#include "output/run_output.hpp"
 #include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
 

@@ -14,7 +14,7 @@
 #include "app/cli.hpp"
 #include "app/run_frames.hpp"
 #include "core/error.hpp"
-#include "io/run_output.hpp"
+#include "output/run_output.hpp"
 #include "render/compare.hpp"
 #include "render/fidelity.hpp"
 #include "scene/scene.hpp"

@@ -14,7 +14,7 @@
 #include "app/run_frames.hpp"
 #include "core/error.hpp"
 #include "io/png.hpp"
-#include "io/run_output.hpp"
+#include "output/run_output.hpp"
 #include "render/compare.hpp"
 #include "scene/scene.hpp"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/run_output.hpp"
+#include "output/run_output.hpp"
 #include "render/rasterizer.hpp"
 
 namespace vdc {

@@ -21,7 +21,7 @@
 #include "app/cli.hpp"
 #include "core/error.hpp"
 #include "core/resource_usage.hpp"
-#include "io/checkpoint.hpp"
+#include "output/checkpoint.hpp"
 #include "scene/scene.hpp"
 
 extern char** environ;

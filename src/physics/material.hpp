@@ -1,13 +1,11 @@
 // Fabric material in physical units: area density (kg/m^2), stretch stiffness (N/m) along warp,
-// weft and in shear, bending stiffness (N m).
+// weft and in shear, bending stiffness (N m). Read from files by scene/material_file.hpp.
 #pragma once
 #include <string>
 
 #include "physics/membrane.hpp"
 
 namespace vdc {
-
-class JsonValue;
 
 struct Material {
   std::string name;
@@ -21,9 +19,5 @@ struct Material {
 
   MembraneStiffness membrane() const;
 };
-
-// Reads a material from a JSON object (a file's top level or an inline block). Throws InputError.
-Material parse_material(const JsonValue& json);
-Material load_material(const std::string& path);
 
 }  // namespace vdc

@@ -5,7 +5,7 @@
 
 #include "core/error.hpp"
 #include "io/json_reader.hpp"
-#include "scene/track.hpp"
+#include "core/track.hpp"
 
 namespace vdc {
 

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "scene/character.hpp"
-#include "scene/track.hpp"
+#include "core/track.hpp"
 
 namespace vdc {
 

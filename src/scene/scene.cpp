@@ -8,14 +8,15 @@
 #include <stdexcept>
 
 #include "core/mesh_build.hpp"
+#include "core/track.hpp"
 #include "io/json_reader.hpp"
-#include "io/bvh_motion.hpp"
 #include "io/obj.hpp"
 #include "physics/cloth_model.hpp"
+#include "scene/bvh_motion.hpp"
 #include "scene/garments.hpp"
-#include "scene/transform.hpp"
-#include "scene/track.hpp"
+#include "scene/material_file.hpp"
 #include "scene/obj_sequence.hpp"
+#include "scene/transform.hpp"
 
 namespace vdc {
 

@@ -13,7 +13,7 @@
 #include "collision/collider.hpp"
 #include "remesh/sizing.hpp"
 #include "scene/handle.hpp"
-#include "scene/track.hpp"
+#include "core/track.hpp"
 #include "scene/character.hpp"
 #include "view/camera.hpp"
 #include "view/view_factor.hpp"

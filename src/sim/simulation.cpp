@@ -10,7 +10,7 @@
 #include "remesh/remesher.hpp"
 #include "remesh/sizing.hpp"
 #include "view/view_sizing.hpp"
-#include "collision/obstacle_planes.hpp"
+#include "remesh/obstacle_planes.hpp"
 #include "collision/untangle.hpp"
 
 namespace vdc {

@@ -21,9 +21,6 @@ class ViewSizing;
 
 enum class SimMode { Fixed, Adaptive, View };
 
-// Face attribute (double) holding each face's view factor in view mode (Koh et al. 2014, eq. 4
-// after silhouette resampling), carried through remeshing to the frame's output.
-inline constexpr const char* kViewFactorAttr = "view_factor";
 bool parse_sim_mode(const std::string& name, SimMode& mode);
 const char* sim_mode_name(SimMode mode);
 

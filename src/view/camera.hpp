@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/math.hpp"
-#include "scene/track.hpp"
+#include "core/track.hpp"
 
 namespace vdc {
 

@@ -1,7 +1,8 @@
 // View factors (Koh, Narain and O'Brien, "View-Dependent Adaptive Cloth Simulation", SCA 2014,
-// sections 3.1 and 3.3): per face, how much of the physical resolution the camera needs. Spatial smoothing (eq.
-// 3) by the distance to the view frustum, temporal smoothing with anticipation (eq. 4) over the
-// camera's future, and silhouette resampling across edges where the factor jumps.
+// sections 3.1 and 3.3): per face, how much of the physical resolution the camera needs.
+// Spatial smoothing (eq. 3) by the distance to the view frustum, temporal smoothing with
+// anticipation (eq. 4) over the camera's future, and silhouette resampling across edges where
+// the factor jumps.
 #pragma once
 #include <vector>
 
@@ -9,6 +10,10 @@
 #include "view/camera.hpp"
 
 namespace vdc {
+
+// Face attribute (double) holding each face's view factor in view mode (Koh et al. 2014, eq. 4
+// after silhouette resampling), carried through remeshing to the frame's output.
+inline constexpr const char* kViewFactorAttr = "view_factor";
 
 struct ViewParams {
   double v_back = 0.2;                // factor of in-frame faces whose outer side faces away

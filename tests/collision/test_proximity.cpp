@@ -8,7 +8,7 @@
 
 #include "collision/collider.hpp"
 #include "collision/distance.hpp"
-#include "collision/obstacle_planes.hpp"
+#include "remesh/obstacle_planes.hpp"
 #include "core/mesh_build.hpp"
 
 namespace vdc {

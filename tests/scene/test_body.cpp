@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/isosurface.hpp"
-#include "io/bvh_motion.hpp"
+#include "scene/bvh_motion.hpp"
 #include "scene/body.hpp"
 
 namespace vdc {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "io/bvh_motion.hpp"
+#include "scene/bvh_motion.hpp"
 #include "io/obj.hpp"
 #include "scene/scene.hpp"
 

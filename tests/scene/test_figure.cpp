@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "io/bvh_motion.hpp"
+#include "scene/bvh_motion.hpp"
 #include "scene/body.hpp"
 #include "scene/figure.hpp"
 

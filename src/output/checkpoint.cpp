@@ -1,4 +1,4 @@
-#include "io/checkpoint.hpp"
+#include "output/checkpoint.hpp"
 
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
 // BVH (Biovision hierarchy) motion files: a recursive-descent reader over line-numbered tokens.
-#include "io/bvh_motion.hpp"
+#include "scene/bvh_motion.hpp"
 
 #include <cerrno>
 #include <cmath>

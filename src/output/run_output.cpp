@@ -1,4 +1,4 @@
-#include "io/run_output.hpp"
+#include "output/run_output.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -8,9 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "io/checkpoint.hpp"
+#include "output/checkpoint.hpp"
 #include "io/obj.hpp"
 #include "io/ply.hpp"
+#include "view/view_factor.hpp"
 
 namespace vdc {
 

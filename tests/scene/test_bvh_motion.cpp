@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "io/bvh_motion.hpp"
+#include "scene/bvh_motion.hpp"
 
 namespace vdc {
 namespace {

@@ -1,5 +1,5 @@
 // Nearest obstacle points of cloth nodes (for obstacle-proximity sizing, Narain et al. 2012).
-#include "collision/obstacle_planes.hpp"
+#include "remesh/obstacle_planes.hpp"
 
 #include <memory>
 

@@ -1,4 +1,4 @@
-#include "scene/track.hpp"
+#include "core/track.hpp"
 
 #include <algorithm>
 

@@ -1,0 +1,21 @@
+# Run at build time (cmake -P) for one layer of src/: fails when one of its files includes a
+# header of a layer it has not declared (CMakeLists.txt, VDCLOTH_USES_<layer>).
+#   -DLAYER=name -DUSES=a,b,c -DDIR=src/name -DSTAMP=file written on success
+cmake_minimum_required(VERSION 3.22)
+string(REPLACE "," ";" USES "${USES}")
+file(GLOB files "${DIR}/*.cpp" "${DIR}/*.hpp")
+set(allowed ${LAYER} ${USES})
+set(problems "")
+foreach(f IN LISTS files)
+  file(STRINGS "${f}" lines REGEX "^[ \t]*#[ \t]*include[ \t]+\"[A-Za-z0-9_]+/")
+  foreach(line IN LISTS lines)
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]+\"([A-Za-z0-9_]+)/.*" "\\1" used "${line}")
+    if(NOT used IN_LIST allowed)
+      string(APPEND problems "${f}: ${line}: the ${LAYER} layer uses only: ${USES}\n")
+    endif()
+  endforeach()
+endforeach()
+if(problems)
+  message(FATAL_ERROR "include against the layers (docs/design.md, \"Layers\"):\n${problems}")
+endif()
+file(TOUCH "${STAMP}")
