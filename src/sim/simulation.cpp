@@ -334,8 +334,24 @@ std::vector<VelocityConstraint> Simulation::constraints(double t_end, double h) 
   return out;
 }
 
-void Simulation::advance(double t, double t_end, int depth, FrameStats& stats, double refused_dv) {
-  const double h = t_end - t;
+// A substep, the steps still to take on a stack with the first half of a halved step on top, so
+// that they are taken in time order; how each is recovered is step_recovery.hpp's policy.
+void Simulation::advance(double t, double t_end, FrameStats& stats) {
+  const StepRecoveryLimits limits{scene_.solver.max_step_halvings, kCollisionHalvings, scene_.solver.max_velocity_change};
+  std::vector<StepInterval> pending{StepInterval{t, t_end, 0, 0}};
+  while (!pending.empty()) {
+    const StepInterval step = pending.back();
+    pending.pop_back();
+    StepReport refused;
+    if (take_step(step, limits, stats, refused)) continue;
+    const auto [first, second] = halves(step, refused, limits);
+    pending.push_back(second);
+    pending.push_back(first);
+  }
+}
+
+bool Simulation::take_step(const StepInterval& step, const StepRecoveryLimits& limits, FrameStats& stats, StepReport& refused) {
+  const double t = step.t, h = step.t_end - step.t;
   StepParams p;
   p.h = h;
   p.gravity = scene_.gravity;
@@ -343,15 +359,14 @@ void Simulation::advance(double t, double t_end, int depth, FrameStats& stats, d
   p.drag = scene_.air.drag;
   p.wind = scene_.air.wind;
   p.threads = options_.threads;
-  const std::vector<VelocityConstraint> held = constraints(t_end, h);
+  const std::vector<VelocityConstraint> held = constraints(step.t_end, h);
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);
   for (const auto& c : held) fixed[static_cast<std::size_t>(c.node)] = 1;
-  ObstacleMotion obstacles{obstacle_positions(t), obstacle_positions(t_end)};
+  ObstacleMotion obstacles{obstacle_positions(t), obstacle_positions(step.t_end)};
   const std::vector<ContactTerm> contacts = proximity_contacts(fixed, obstacles, h, stats);
   const Eigen::VectorXd x_start = x_, v_start = v_;
-  const double limit = scene_.solver.max_velocity_change;
   auto solve = [&](VelocityLimit mode) {
-    const StepReport report = integrator_->step(x_, v_, held, p, limit, contacts, mode);
+    const StepReport report = integrator_->step(x_, v_, held, p, limits.max_velocity_change, contacts, mode);
     stats.assemble_seconds += report.assemble_seconds;
     stats.solve_seconds += report.solve_seconds;
     stats.solver_iterations += report.solver_iterations;
@@ -359,37 +374,38 @@ void Simulation::advance(double t, double t_end, int depth, FrameStats& stats, d
     return report;
   };
   StepReport r = solve(VelocityLimit::Refuse);
-  // A velocity change that does not shrink with the step (the contact penalty pushing a deep
-  // penetration out asks for a fixed displacement, so a velocity growing as 1/h) or that remains
-  // at the smallest step: clamp it to the limit rather than end the run.
-  if (!r.ok && std::isfinite(r.max_dv) && r.max_dv > limit &&
-      (depth >= scene_.solver.max_step_halvings || (refused_dv > 0 && r.max_dv >= refused_dv))) {
+  Recovery next = after_solve(r, step, limits);
+  if (next == Recovery::Clamp) {
     const StepReport c = solve(VelocityLimit::Clamp);
     if (c.ok) {
       ++stats.velocity_clamps;
       if (log_) {
         std::ostringstream msg;
         msg << "frame " << frame_ + 1 << ": step at t = " << t << " s (h = " << h << " s): velocity change " << r.max_dv
-            << " m/s does not shrink with the step; clamped to " << limit << " m/s at " << c.clamped_nodes << " node(s)";
+            << " m/s does not shrink with the step; clamped to " << limits.max_velocity_change << " m/s at " << c.clamped_nodes << " node(s)";
         log_(msg.str());
       }
       r = c;
+      next = Recovery::Accept;
+    } else {
+      next = after_failure(step, limits);
     }
   }
-  if (r.ok) {
+  if (next == Recovery::Accept) {
     // Impact zones that do not separate: first retry the step in halves (smaller motions meet
     // fewer impacts at once); at the last level the zones keep their start positions.
-    const bool may_halve = depth < kCollisionHalvings && depth < scene_.solver.max_step_halvings;
+    const bool may_halve = zones_may_halve(step, limits);
     const int fallbacks = resolve_collisions(x_start, h, fixed, obstacles, stats, !may_halve);
     if (fallbacks == 0 || !may_halve) {
       ++stats.substeps;
-      return;
+      return true;
     }
     x_ = x_start;
     v_ = v_start;
     r.failure = std::to_string(fallbacks) + " impact zone(s) did not separate";
+    next = after_failure(step, limits);
   }
-  if (depth >= scene_.solver.max_step_halvings) {
+  if (next == Recovery::Fail) {
     std::ostringstream msg;
     msg << "frame " << frame_ + 1 << ": step at t = " << t << " s failed at the smallest step " << h << " s: " << r.failure;
     throw SimulationError(msg.str());
@@ -401,10 +417,8 @@ void Simulation::advance(double t, double t_end, int depth, FrameStats& stats, d
         << "; retrying as two steps of " << h / 2 << " s";
     log_(msg.str());
   }
-  const double dv = r.max_dv > scene_.solver.max_velocity_change ? r.max_dv : 0;
-  const double t_mid = t + h / 2;
-  advance(t, t_mid, depth + 1, stats, dv);
-  advance(t_mid, t_end, depth + 1, stats, dv);
+  refused = r;
+  return false;
 }
 
 std::vector<ContactTerm> Simulation::proximity_contacts(const std::vector<char>& fixed, const ObstacleMotion& obstacles, double h,
@@ -462,7 +476,7 @@ FrameStats Simulation::step_frame() {
   auto boundary = [&](int s) { return s == scene_.substeps ? (frame_ + 1) * scene_.frame_time : t_frame + s * h; };
   if (options_.mode != SimMode::Fixed) remesh_garments(stats);
   if (restart_pending_) rebuild();  // unless remeshing just did
-  for (int s = 0; s < scene_.substeps; ++s) advance(boundary(s), boundary(s + 1), 0, stats);
+  for (int s = 0; s < scene_.substeps; ++s) advance(boundary(s), boundary(s + 1), stats);
   ++frame_;
   // A zone that fell back to its start-of-step positions rode along with the obstacles it
   // touched, which need not keep it outside them: such a frame ends untangled (Volino and

@@ -14,6 +14,7 @@
 #include "remesh/remesher.hpp"
 #include "remesh/sizing.hpp"
 #include "scene/scene.hpp"
+#include "sim/step_recovery.hpp"
 
 namespace vdc {
 
@@ -113,9 +114,11 @@ class Simulation {
   void gather_state();                  // meshes -> x_, v_
   void scatter_state();                 // x_, v_ -> meshes
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
-  // One step from time t to t_end, at halving depth `depth`; refused_dv is the velocity change
-  // that made the parent step refuse (0 at the top), to tell when halving stops helping.
-  void advance(double t, double t_end, int depth, FrameStats& stats, double refused_dv = 0);
+  // One substep from time t to t_end, halved as step_recovery.hpp's policy says.
+  void advance(double t, double t_end, FrameStats& stats);
+  // Takes `step` (true), or says why it must be halved (false, `refused`); throws SimulationError
+  // when the smallest step fails.
+  bool take_step(const StepInterval& step, const StepRecoveryLimits& limits, FrameStats& stats, StepReport& refused);
   // Obstacle vertex positions at the start and end of a step, per obstacle.
   struct ObstacleMotion {
     std::vector<std::vector<Vec3>> start, end;
