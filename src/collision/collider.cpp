@@ -5,11 +5,9 @@
 #include <algorithm>
 #include <map>
 #include <numeric>
-#include <optional>
 
-#include "collision/ccd.hpp"
-#include "collision/distance.hpp"
 #include "collision/impact_zone.hpp"
+#include "collision/narrow_phase.hpp"
 
 namespace vdc {
 
@@ -222,66 +220,18 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
 
     // Every query primitive (cloth vertex, obstacle vertex, cloth edge) traverses its hierarchy
     // and tests its candidates in parallel, into its own list; the lists are taken in primitive
-    // order, so the results do not depend on the thread count.
-    auto add_constraint = [&](std::array<PointRef, 4> pts, std::array<double, 4> w, Vec3 n, std::optional<ImpactConstraint>& out) {
-      ImpactConstraint c;
-      c.weights = w;
-      c.normal = n;
-      double weight_fixed = 0;
-      for (int j = 0; j < 4; ++j) {
-        const auto ju = static_cast<std::size_t>(j);
-        const PointRef& p = pts[ju];
-        const bool movable = p.obstacle < 0 && !fixed[static_cast<std::size_t>(p.index)];
-        c.nodes[ju] = movable ? p.index : -1;
-        c.fixed[ju] = p1(p);
-        if (!movable) {
-          c.fixed_motion += std::abs(w[ju]) * (p1(p) - p0(p));
-          weight_fixed += std::abs(w[ju]);
-        }
-      }
-      if (weight_fixed > 0) {
-        c.fixed_motion /= weight_fixed;
-        c.has_fixed = true;
-      }
-      out = c;
-    };
-    auto vertex_face = [&](const PointRef& p, const std::array<PointRef, 3>& tri, std::optional<ImpactConstraint>& out) {
-      Impact hit = vertex_face_ccd(p0(p), p1(p), p0(tri[0]), p1(tri[0]), p0(tri[1]), p1(tri[1]), p0(tri[2]), p1(tri[2]), eta);
-      if (!hit.hit) return;
-      auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
-      Vec3 w = closest_triangle_weights(at(p), at(tri[0]), at(tri[1]), at(tri[2]));
-      Vec3 n = (at(tri[1]) - at(tri[0])).cross(at(tri[2]) - at(tri[0]));
-      if (n.squaredNorm() == 0) n = (p1(tri[1]) - p1(tri[0])).cross(p1(tri[2]) - p1(tri[0]));
-      if (n.squaredNorm() == 0) return;
-      n.normalize();
-      const Vec3 foot0 = w[0] * p0(tri[0]) + w[1] * p0(tri[1]) + w[2] * p0(tri[2]);
-      if (n.dot(p0(p) - foot0) < 0) n = -n;  // the side the vertex came from
-      add_constraint({p, tri[0], tri[1], tri[2]}, {1.0, -w[0], -w[1], -w[2]}, n, out);
-    };
-    auto edge_edge = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, std::optional<ImpactConstraint>& out) {
-      Impact hit = edge_edge_ccd(p0(a), p1(a), p0(b), p1(b), p0(c), p1(c), p0(d), p1(d), eta);
-      if (!hit.hit) return;
-      auto at = [&](const PointRef& q) { return Vec3(p0(q) + hit.t * (p1(q) - p0(q))); };
-      Vec2 su = closest_segment_params(at(a), at(b), at(c), at(d));
-      const double s = su.x(), u = su.y();
-      auto sep0 = [&]() { return Vec3((1 - s) * p0(a) + s * p0(b) - (1 - u) * p0(c) - u * p0(d)); };
-      Vec3 n = (at(b) - at(a)).cross(at(d) - at(c));
-      if (n.squaredNorm() < 1e-20 * (at(b) - at(a)).squaredNorm() * (at(d) - at(c)).squaredNorm()) n = sep0();
-      if (n.squaredNorm() == 0) return;
-      n.normalize();
-      if (n.dot(sep0()) < 0) n = -n;
-      add_constraint({a, b, c, d}, {1 - s, s, -(1 - u), -u}, n, out);
+    // order, so the results do not depend on the thread count. Candidates go to the narrow
+    // phase (narrow_phase.hpp) as the paths of their points over the step.
+    auto path = [&](const PointRef& p) {
+      const bool movable = p.obstacle < 0 && !fixed[static_cast<std::size_t>(p.index)];
+      return PointPath{p0(p), p1(p), movable ? p.index : -1};
     };
     using Hits = std::vector<ImpactConstraint>;
     auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri, Hits& out) {
-      std::optional<ImpactConstraint> hit;
-      vertex_face(p, tri, hit);
-      if (hit) out.push_back(*hit);
+      if (auto hit = vertex_face_impact(path(p), path(tri[0]), path(tri[1]), path(tri[2]), eta)) out.push_back(*hit);
     };
     auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, Hits& out) {
-      std::optional<ImpactConstraint> hit;
-      edge_edge(a, b, c, d, hit);
-      if (hit) out.push_back(*hit);
+      if (auto hit = edge_edge_impact(path(a), path(b), path(c), path(d), eta)) out.push_back(*hit);
     };
 
     // Cloth vertices against cloth and obstacle faces.
