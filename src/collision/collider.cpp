@@ -3,8 +3,6 @@
 #include "collision/collider.hpp"
 
 #include <algorithm>
-#include <map>
-#include <numeric>
 
 #include "collision/impact_zone.hpp"
 #include "collision/narrow_phase.hpp"
@@ -62,11 +60,6 @@ struct PointRef {
   int32_t obstacle;
   int32_t index;
 };
-
-int32_t find(std::vector<int32_t>& parent, int32_t i) {
-  while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-  return i;
-}
 
 }  // namespace
 
@@ -162,10 +155,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   for (const auto& f : cloth_faces_)
     for (int32_t n : f) cloth_node_used[static_cast<std::size_t>(n)] = 1;
 
-  std::vector<int32_t> parent(static_cast<std::size_t>(num_nodes_));
-  std::iota(parent.begin(), parent.end(), 0);
-  std::vector<ImpactConstraint> constraints;
-  std::vector<int32_t> constraint_anchor;  // a movable cloth node of each constraint
+  ImpactZones zones(num_nodes_);
   const Bvh* face_bvh = nullptr;
   const Bvh* edge_bvh = nullptr;
   std::vector<char> moved(static_cast<std::size_t>(num_nodes_), 1);
@@ -309,73 +299,10 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       clear = true;
       break;
     }
-    // Merge the nodes of each new impact into one zone.
-    for (const auto& c : found) {
-      int32_t first = -1;
-      for (int32_t n : c.nodes) {
-        if (n < 0) continue;
-        if (first < 0) first = n;
-        else parent[static_cast<std::size_t>(find(parent, n))] = find(parent, first);
-      }
-      if (first < 0) continue;  // nothing movable: an impact between fixed points
-      constraints.push_back(c);
-      constraint_anchor.push_back(first);
-    }
-    // Project each zone with every constraint gathered for it so far.
-    std::fill(moved.begin(), moved.end(), 0);
-    std::map<int32_t, std::vector<std::size_t>> zones;
-    for (std::size_t i = 0; i < constraints.size(); ++i) zones[find(parent, constraint_anchor[i])].push_back(i);
-    for (const auto& [root, members] : zones) {
-      std::map<int32_t, int32_t> local;
-      std::vector<Vec3> xz;
-      std::vector<double> mz;
-      std::vector<ImpactConstraint> cz;
-      for (std::size_t i : members) {
-        ImpactConstraint c = constraints[i];
-        for (int32_t& n : c.nodes) {
-          if (n < 0) continue;
-          auto it = local.find(n);
-          if (it == local.end()) {
-            it = local.emplace(n, static_cast<int32_t>(xz.size())).first;
-            xz.push_back(cloth_end(n));
-            mz.push_back(mass[static_cast<std::size_t>(n)]);
-          }
-          n = it->second;
-        }
-        cz.push_back(c);
-      }
-      project_impact_zone(xz, mz, cz, params.impact_separation, 1e-3 * params.thickness);
-      for (const auto& [global, li] : local) {
-        const Vec3& moved_to = xz[static_cast<std::size_t>(li)];
-        if (moved_to != cloth_end(global)) moved[static_cast<std::size_t>(global)] = 1;
-        x_end.segment<3>(3 * global) = moved_to;
-      }
-    }
+    zones.add(found);
+    zones.project(x_end, mass, params.impact_separation, 1e-3 * params.thickness, moved);
   }
-  if (!clear) {
-    // Fallback: every zone still in contact goes back to where it started the step, moved with
-    // the obstacles it touches (their mean displacement at its contacts), so that a zone caught
-    // on a moving body rides along rather than being swallowed by it.
-    std::map<int32_t, std::vector<int32_t>> members;
-    std::map<int32_t, std::pair<Vec3, int>> carried;
-    for (std::size_t i = 0; i < constraints.size(); ++i) {
-      const int32_t root = find(parent, constraint_anchor[i]);
-      for (int32_t n : constraints[i].nodes)
-        if (n >= 0) members[root].push_back(n);
-      if (constraints[i].has_fixed) {
-        auto& [sum, count] = carried[root];
-        if (count == 0) sum = Vec3::Zero();
-        sum += constraints[i].fixed_motion;
-        ++count;
-      }
-    }
-    for (const auto& [root, nodes] : members) {
-      const auto it = carried.find(root);
-      const Vec3 d = it == carried.end() ? Vec3::Zero() : Vec3(it->second.first / it->second.second);
-      for (int32_t n : nodes) x_end.segment<3>(3 * n) = x_start.segment<3>(3 * n) + d;
-      ++stats.fallbacks;
-    }
-  }
+  if (!clear) stats.fallbacks += zones.fall_back(x_start, x_end);
   return stats;
 }
 

@@ -7,6 +7,8 @@
 #include <array>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "core/math.hpp"
 
 namespace vdc {
@@ -41,5 +43,31 @@ double separation(const ImpactConstraint& c, const std::vector<Vec3>& x);
 ProjectionReport project_impact_zone(std::vector<Vec3>& x, const std::vector<double>& mass,
                                      const std::vector<ImpactConstraint>& constraints, double min_separation, double tolerance,
                                      int max_iterations = 200);
+
+// The impact zones of one step (Bridson, Fedkiw and Anderson 2002, section 7.4; Harmon et al.
+// 2008, section 4): the movable nodes of every impact found so far merged into zones, each zone
+// projected with every constraint gathered for it, and the fallback for zones that do not
+// separate.
+class ImpactZones {
+ public:
+  explicit ImpactZones(int32_t num_nodes);
+  // Merges each impact's movable nodes into one zone and keeps its constraint; an impact between
+  // fixed points only is dropped.
+  void add(const std::vector<ImpactConstraint>& found);
+  // Projects each zone (project_impact_zone) on the end positions x (3 per node, masses by
+  // node); moved[n] becomes 1 for the nodes the projection moved, 0 for the others.
+  void project(Eigen::VectorXd& x, const std::vector<double>& mass, double min_separation, double tolerance,
+               std::vector<char>& moved);
+  // Sends every zone back to where it started the step, moved with the obstacles it touches (the
+  // mean displacement of its constraints' fixed points), so that a zone caught on a moving body
+  // rides along rather than being swallowed by it. Returns the number of zones.
+  int fall_back(const Eigen::VectorXd& x_start, Eigen::VectorXd& x_end);
+
+ private:
+  int32_t root(int32_t node);  // union-find with path halving
+  std::vector<int32_t> parent_;
+  std::vector<ImpactConstraint> constraints_;
+  std::vector<int32_t> anchor_;  // a movable node of each constraint
+};
 
 }  // namespace vdc

@@ -83,6 +83,52 @@ TEST(ImpactZone, ObstaclePointsStayAndSeparatedZonesAreUntouched) {
 namespace vdc {
 namespace {
 
+// Separation along +z of node a above node b (b < 0: above the fixed origin).
+ImpactConstraint above(int32_t a, int32_t b) {
+  ImpactConstraint c;
+  c.nodes = {a, b, -1, -1};
+  c.weights = {1.0, -1.0, 0.0, 0.0};
+  c.normal = Vec3(0, 0, 1);
+  return c;
+}
+
+// Nodes 0, 1, 2 stacked the wrong way round by two impacts that share node 1 (one zone), node 4
+// under the fixed origin (a zone of its own), node 3 in no impact, and an impact between fixed
+// points only. One projection must meet both constraints of the merged zone at once, conserve
+// its momentum, and leave node 3 where it was; the fallback sends each zone back to its start,
+// the one on a moving obstacle carried with it.
+TEST(ImpactZones, ImpactsSharingANodeAreProjectedAsOneZoneAndFallBackTogether) {
+  const double d = 0.01;
+  Eigen::VectorXd x_start = Eigen::VectorXd::Zero(15), x(15);
+  x << 0, 0, 0, 0, 0, 0.001, 0, 0, 0.002, 1, 0, 0, 0, 0, -0.005;
+  const std::vector<double> mass = {1.0, 2.0, 0.5, 1.0, 3.0};
+  ImpactConstraint on_obstacle = above(4, -1);
+  on_obstacle.has_fixed = true;
+  on_obstacle.fixed_motion = Vec3(0, 0, 0.3);
+  ImpactConstraint fixed_only = above(-1, -1);
+  ImpactZones zones(5);
+  zones.add({above(0, 1), above(1, 2), on_obstacle, fixed_only});
+  std::vector<char> moved(5, 1);
+  const Eigen::VectorXd before = x;
+  zones.project(x, mass, d, 1e-9, moved);
+  EXPECT_GE(x[2] - x[5], d - 1e-9);   // node 0 above node 1
+  EXPECT_GE(x[5] - x[8], d - 1e-9);   // node 1 above node 2
+  EXPECT_NEAR(x[14], d, 1e-9);         // node 4 above the origin: only it moves
+  double momentum_before = 0, momentum_after = 0;
+  for (int n = 0; n < 3; ++n) {
+    momentum_before += mass[static_cast<std::size_t>(n)] * before[3 * n + 2];
+    momentum_after += mass[static_cast<std::size_t>(n)] * x[3 * n + 2];
+  }
+  EXPECT_NEAR(momentum_after, momentum_before, 1e-12);
+  EXPECT_EQ(moved, (std::vector<char>{1, 1, 1, 0, 1}));
+  EXPECT_EQ(x.segment<3>(9), before.segment<3>(9));
+
+  EXPECT_EQ(zones.fall_back(x_start, x), 2);  // the merged zone and node 4's; not the fixed-only impact
+  for (int n = 0; n < 3; ++n) EXPECT_EQ(Vec3(x.segment<3>(3 * n)), Vec3::Zero()) << n;
+  EXPECT_LT((Vec3(x.segment<3>(12)) - Vec3(0, 0, 0.3)).norm(), 1e-15);
+  EXPECT_EQ(x.segment<3>(9), before.segment<3>(9));
+}
+
 TEST(Collider, AVertexThatCrossesAnObstacleEndsTheStepAtTheImpactSeparationOnItsSide) {
   // A cloth triangle whose corner 0 drops from 1 mm above an obstacle floor (y = 0) to 10 mm
   // below it in one step; its other corners stay 0.5 m up. The projection moves only corner 0,
