@@ -60,7 +60,7 @@ const char* kRunHelp =
     "                resolution bent to the scene's camera). Default: fixed.\n"
     "  --frames N    number of frames to simulate (default: the scene's `frames`)\n"
     "  --out DIR     output directory (default: out/<scene name>)\n"
-    "  --threads N   worker threads (default: all cores)\n"
+    "  --threads N   worker threads, 1 to 256 (default: all cores)\n"
     "  --mesh-every N  write the meshes of frames 0, N, 2N, ... only; 0: none (default: 1, every frame)\n"
     "  --checkpoint-every N  keep DIR/checkpoint.bin at frames N, 2N, ... and the last; 0: none\n"
     "                (default: 10)\n"
@@ -101,7 +101,7 @@ struct RunArgs {
 
 }  // namespace
 
-int parse_positive_int(const std::string& option, const std::string& value) {
+int parse_int_in(const std::string& option, const std::string& value, int lowest, int highest) {
   std::size_t used = 0;
   long long n = 0;
   try {
@@ -109,10 +109,13 @@ int parse_positive_int(const std::string& option, const std::string& value) {
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used != value.size() || value.empty() || n < 1 || n > 1'000'000)
-    throw UsageError(option + " expects a whole number from 1 to 1000000, got '" + value + "'");
+  if (used != value.size() || value.empty() || n < lowest || n > highest)
+    throw UsageError(option + " expects a whole number from " + std::to_string(lowest) + " to " + std::to_string(highest) + ", got '" +
+                     value + "'");
   return static_cast<int>(n);
 }
+
+int parse_positive_int(const std::string& option, const std::string& value) { return parse_int_in(option, value, 1, 1'000'000); }
 
 double parse_number(const std::string& option, const std::string& value, double lowest, double highest) {
   std::size_t used = 0;
@@ -149,13 +152,11 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
       r.out = value();
       if (r.out.empty()) throw UsageError("--out needs a directory");
     } else if (a == "--threads") {
-      r.threads = parse_positive_int(a, value());
+      r.threads = parse_int_in(a, value(), 1, kMaxThreads);
     } else if (a == "--mesh-every") {
-      const std::string& v = value();
-      r.mesh_every = v == "0" ? 0 : parse_positive_int(a, v);
+      r.mesh_every = parse_int_in(a, value(), 0, 1'000'000);
     } else if (a == "--checkpoint-every") {
-      const std::string& v = value();
-      r.checkpoint_every = v == "0" ? 0 : parse_positive_int(a, v);
+      r.checkpoint_every = parse_int_in(a, value(), 0, 1'000'000);
     } else if (a == "--resume") {
       r.resume = true;
     } else if (a == "--group") {

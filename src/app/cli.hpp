@@ -17,7 +17,14 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The whole number of an option's value, 1 to 1,000,000; UsageError naming the option otherwise.
+// Worker threads a command accepts (--threads): more is not a machine this runs on, and asking
+// the thread library for a hundred thousand ends the process.
+inline constexpr int kMaxThreads = 256;
+
+// The whole number of an option's value, from `lowest` to `highest`; UsageError naming the option
+// and the range otherwise.
+int parse_int_in(const std::string& option, const std::string& value, int lowest, int highest);
+// The same from 1 to 1,000,000.
 int parse_positive_int(const std::string& option, const std::string& value);
 // The number of an option's value, from `lowest` to `highest`; UsageError naming the option and
 // the range otherwise.

@@ -49,7 +49,7 @@ const char* kTable1Help =
     "                  baseline costs far more a frame, and its first frames measure that cost;\n"
     "                  speed-ups are taken over the frames both runs have\n"
     "  --out DIR       output directory (default: out/table1)\n"
-    "  --threads N     worker threads of each run (default: all cores)\n"
+    "  --threads N     worker threads of each run, 1 to 256 (default: all cores)\n"
     "  --scenes DIR    where the scenes are (default: scenes)\n"
     "  --scene NAME    run only this scene (repeatable; default: all three)\n"
     "  --mode M        run only this mode: fixed, adaptive or view (repeatable; default: all three);\n"
@@ -83,7 +83,7 @@ Table1Args parse_table1_args(const std::vector<std::string>& args) {
     if (a == "--frames") r.frames = parse_positive_int(a, value());
     else if (a == "--fixed-frames") r.fixed_frames = parse_positive_int(a, value());
     else if (a == "--out") r.out = value();
-    else if (a == "--threads") r.threads = parse_positive_int(a, value());
+    else if (a == "--threads") r.threads = parse_int_in(a, value(), 1, kMaxThreads);
     else if (a == "--scenes") r.scenes = value();
     else if (a == "--scene") r.only.push_back(value());
     else if (a == "--mode") {

@@ -1,26 +1,66 @@
 #include "io/json_reader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
-#include <regex>
+#include <limits>
 #include <sstream>
 
 namespace vdc {
 
+namespace {
+
+// A problem quoted from the parser, cut short: its last-read token can be a whole file.
+std::string shortened(const std::string& text) {
+  constexpr std::size_t kMost = 200;
+  if (text.size() <= kMost) return text;
+  return text.substr(0, kMost) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
+// "line L, column C" of byte `offset` of `text` (both counted from 1).
+std::string line_column(const std::string& text, std::size_t offset) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+}  // namespace
+
 JsonValue JsonValue::load_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "", fs::exists(path, ec) ? "not a regular file" : "cannot open file");
+  if (fs::file_size(path, ec) > kMaxFileBytes)
+    throw InputError(path, "", "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB, too large for a JSON file of this program");
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot open file");
   std::stringstream ss;
   ss << in.rdbuf();
+  const std::string text = ss.str();
   try {
-    return JsonValue(nlohmann::json::parse(ss.str()), path, "");
+    return JsonValue(nlohmann::json::parse(text), path, "");
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
-    std::string msg = e.what();
-    std::smatch m;
-    if (std::regex_search(msg, m, std::regex(R"(at (line \d+, column \d+): (.*))")))
-      throw InputError(path, m[1].str(), "JSON syntax error: " + m[2].str());
-    throw InputError(path, "byte " + std::to_string(e.byte), "JSON syntax error: " + msg);
+    const std::string msg = e.what();
+    const std::size_t at = msg.find(" at line ");
+    const std::size_t colon = at == std::string::npos ? std::string::npos : msg.find(": ", at);
+    if (colon != std::string::npos) throw InputError(path, msg.substr(at + 4, colon - at - 4), "JSON syntax error: " + shortened(msg.substr(colon + 2)));
+    throw InputError(path, "byte " + std::to_string(e.byte), "JSON syntax error: " + shortened(msg));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": found again in the text.
+    const std::string msg = e.what();
+    const std::size_t open = msg.find("parsing '"), close = msg.rfind('\'');
+    const std::string token = open == std::string::npos || close <= open + 9 ? "" : msg.substr(open + 9, close - open - 9);
+    const std::size_t where = token.empty() ? std::string::npos : text.find(token);
+    throw InputError(path, where == std::string::npos ? "" : line_column(text, where),
+                     "number out of range" + (token.empty() ? std::string() : ": " + shortened(token)));
   }
 }
 
@@ -98,6 +138,8 @@ double JsonValue::non_negative() const {
 
 long long JsonValue::integer() const {
   if (!value_.is_number_integer()) fail("expected an integer, found " + (value_.is_number() ? value_.dump() : type_name()));
+  if (value_.is_number_unsigned() && value_.get<unsigned long long>() > static_cast<unsigned long long>(std::numeric_limits<long long>::max()))
+    fail("integer " + value_.dump() + " is out of range");
   return value_.get<long long>();
 }
 

@@ -1,6 +1,7 @@
 // Strict reading of JSON input files: every value knows its file and key path
 // (e.g. garments[0].material), unknown keys and wrong types are errors that name them.
 #pragma once
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -15,8 +16,10 @@ namespace vdc {
 
 class JsonValue {
  public:
-  // Parses a file; syntax errors become InputError with "line L, column C".
+  // Parses a file; syntax errors and numbers out of range become InputError with "line L,
+  // column C". Only regular files of at most kMaxFileBytes are read.
   static JsonValue load_file(const std::string& path);
+  static constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{256} << 20;
   JsonValue(nlohmann::json value, std::string file, std::string path);
 
   const std::string& file() const { return file_; }

@@ -130,7 +130,8 @@ Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment)
   auto c = cells.items();
   if (c.size() != 2) cells.fail("expected [nx, ny]");
   long long nx = c[0].integer(), ny = c[1].integer();
-  if (nx < 1 || ny < 1 || nx * ny > 4'000'000) cells.fail("cell counts must be between 1 and 4,000,000 in all");
+  if (nx < 1 || ny < 1 || nx > 4'000'000 || ny > 4'000'000 || nx * ny > 4'000'000)
+    cells.fail("cell counts must be between 1 and 4,000,000 in all");
   return build_mesh(make_grid(size.x(), size.y(), static_cast<int>(nx), static_cast<int>(ny)));
 }
 
@@ -366,9 +367,14 @@ Scene load_scene(const std::string& path) {
   Scene s;
   s.path = path;
   s.name = j.string_or("name", fs::path(path).stem().string());
+  // The name is the default output directory's (out/NAME): one path component, nothing else.
+  const bool control = std::any_of(s.name.begin(), s.name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+  if (s.name.empty() || s.name == "." || s.name == ".." || s.name.find_first_of("/\\") != std::string::npos || control)
+    (j.has("name") ? j.at("name") : j).fail("the scene's name must be one file name (no slashes, not . or ..): it names the output directory");
   s.frame_time = j.has("frame_time") ? j.at("frame_time").positive() : s.frame_time;
-  s.frames = static_cast<int>(j.integer_or("frames", s.frames));
-  if (s.frames < 1) j.at("frames").fail("must be at least 1");
+  const long long frames = j.integer_or("frames", s.frames);
+  if (frames < 1 || frames > 10'000'000) j.at("frames").fail("must be between 1 and 10,000,000");
+  s.frames = static_cast<int>(frames);
   long long sub = j.integer_or("substeps", s.substeps);
   if (sub < 1 || sub > 10000) j.at("substeps").fail("must be between 1 and 10000");
   s.substeps = static_cast<int>(sub);
@@ -385,7 +391,7 @@ Scene load_scene(const std::string& path) {
       if (!parse_linear_solver_kind(lin->string(), s.solver.linear)) lin->fail("expected \"cholmod-pcg\", \"cholmod\", \"ldlt\" or \"cg\"");
     s.solver.params.cg_tolerance = so->positive_or("cg_tolerance", s.solver.params.cg_tolerance);
     long long it = so->integer_or("cg_max_iterations", s.solver.params.cg_max_iterations);
-    if (it < 1) so->at("cg_max_iterations").fail("must be at least 1");
+    if (it < 1 || it > 1'000'000) so->at("cg_max_iterations").fail("must be between 1 and 1,000,000");
     s.solver.params.cg_max_iterations = static_cast<int>(it);
     s.solver.max_velocity_change = so->positive_or("max_velocity_change", s.solver.max_velocity_change);
   }

@@ -127,6 +127,25 @@ TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
        {},
        {"garments[0].material.density", "greater than 0"}},
       {"zero frame time", [&] { return scene("", "\"frame_time\": 0, "); }, {}, {"frame_time", "greater than 0"}},
+      // Hostile numbers, names and sizes: refused where they are, not wrapped, crashed on or run.
+      {"frames that wrap an int", [&] { return scene("", "\"frames\": 4294967297, "); }, {}, {"frames", "between 1 and 10,000,000"}},
+      {"frames past an int", [&] { return scene("", "\"frames\": 2147483648, "); }, {}, {"frames", "between 1 and 10,000,000"}},
+      {"an integer past 64 bits", [&] { return scene("", "\"substeps\": 18446744073709551615, "); }, {}, {"substeps", "out of range"}},
+      {"a number past the doubles", [&] { return scene("", "\"frame_time\": 1e400, "); }, {}, {"scene.json", "line 1, column", "number out of range: 1e400"}},
+      {"a long string with a bad escape",
+       [&] { return write("scene.json", "{\"name\": \"" + std::string(30000, 'a') + "\\q\"}"); },
+       {},
+       {"scene.json", "line 1, column 30012", "syntax error", "characters)"}},
+      {"a scene name that leaves the output directory", [&] { return scene("", "\"name\": \"../../escaped\", "); }, {}, {"name", "one file name"}},
+      {"a directory as the scene",
+       [&] {
+         fs::create_directories(dir_ / "a_directory");
+         return (dir_ / "a_directory").string();
+       },
+       {},
+       {"a_directory", "not a regular file"}},
+      {"a hundred thousand threads", [&] { return scene(); }, {"--threads", "100000"}, {"--threads", "from 1 to 256", "100000"}},
+      {"a negative mesh interval", [&] { return scene(); }, {"--mesh-every", "-1"}, {"--mesh-every", "from 0 to 1000000"}},
       {"impact separation beyond the thickness",
        [&] { return scene("", R"("collision": {"thickness": 0.002, "impact_separation": 0.003}, )"); },
        {},
