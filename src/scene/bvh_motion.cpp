@@ -88,8 +88,13 @@ Vec3 parse_offset(Reader& r) {
   return o;
 }
 
-// A joint's body after its name: { OFFSET, CHANNELS, children }.
-void parse_joint(Reader& r, Skeleton& s, const std::string& name, int parent) {
+// Joints nested deeper than this are refused (a body has about ten; a hostile file could nest
+// enough to exhaust the stack of this recursive reader).
+constexpr int kMaxJointDepth = 256;
+
+// A joint's body after its name: { OFFSET, CHANNELS, children }, `depth` below the root.
+void parse_joint(Reader& r, Skeleton& s, const std::string& name, int parent, int depth) {
+  if (depth > kMaxJointDepth) r.fail(r.line(), "joints nested more than " + std::to_string(kMaxJointDepth) + " levels deep");
   r.expect("{");
   const int index = static_cast<int>(s.joints.size());
   s.joints.push_back(Joint{name, parent, Vec3::Zero(), {}, s.num_channels});
@@ -105,7 +110,7 @@ void parse_joint(Reader& r, Skeleton& s, const std::string& name, int parent) {
   while (r.peek() != "}") {
     const Token& t = r.next("JOINT, End Site or '}'");
     if (t.text == "JOINT") {
-      parse_joint(r, s, r.next("a joint name").text, index);
+      parse_joint(r, s, r.next("a joint name").text, index, depth + 1);
     } else if (t.text == "End") {
       r.expect("Site");
       r.expect("{");
@@ -125,7 +130,7 @@ Motion parse_bvh(const std::string& text, const std::string& name) {
   Motion m;
   r.expect("HIERARCHY");
   r.expect("ROOT");
-  parse_joint(r, m.skeleton, r.next("the root's name").text, -1);
+  parse_joint(r, m.skeleton, r.next("the root's name").text, -1, 0);
   r.expect("MOTION");
   r.expect("Frames:");
   const int frames_line = r.line();

@@ -97,6 +97,12 @@ TEST(BvhMotion, MalformedFilesNameTheLine) {
       {chain + "1 2 x\n", "line 21"},
       {"HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n", "file ends"},
   };
+  // A hierarchy nested 100,000 joints deep is refused at the 257th level, not read until the
+  // stack runs out.
+  std::string deep = "HIERARCHY\nROOT j\n{\nOFFSET 0 0 0\n";
+  for (int k = 0; k < 100000; ++k) deep += "JOINT j\n{\nOFFSET 0 0 1\n";
+  cases.push_back({deep, "nested more than 256 levels deep"});
+  cases.push_back({deep, "line " + std::to_string(5 + 3 * 256 + 1)});  // the '{' of joint 257 (its JOINT on line 5 + 3 x 256)
   for (const auto& c : cases) {
     try {
       parse_bvh(c.text, "bad.bvh");
