@@ -235,6 +235,10 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     if (resume->frame > frames)
       throw UsageError("--resume: the run in " + dir + " is at frame " + std::to_string(resume->frame) + ", past the " +
                        std::to_string(frames) + " frames asked for");
+    if (resume->frame == frames && run_is_done(dir, frames)) {  // its summary stays as it is
+      out << "vdcloth: the run in " << dir << " is done (" << frames << " frames); nothing to resume" << std::endl;
+      return kExitOk;
+    }
   }
 
   bool line_open = false;

@@ -158,6 +158,13 @@ void RunOutput::write_stats_row(const FrameStats& s) {
   tally(s.faces, s.seconds);
 }
 
+bool run_is_done(const std::string& dir, int frames) {
+  std::ifstream in(dir + "/summary.json");
+  if (!in) return false;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  return j.is_object() && j.value("status", "") == "done" && j.value("frames", -1) == frames;
+}
+
 void RunOutput::write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
                               int segments, int frames_done, int threads, double perturbation) const {
   nlohmann::json j;

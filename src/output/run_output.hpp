@@ -17,6 +17,9 @@ using FrameFiles = std::map<std::string, std::string>;
 // missing or holds no frame mesh.
 std::map<int, FrameFiles> read_frame_files(const std::string& run_dir);
 
+// Whether DIR/summary.json says the run is done with `frames` frames (a resume has nothing to do).
+bool run_is_done(const std::string& dir, int frames);
+
 class RunOutput {
  public:
   // Creates DIR and DIR/frames, removing frame files of an earlier run. Throws InputError if the

@@ -568,6 +568,14 @@ TEST_F(CliTest, ResumeRefusesWhatItCannotGoOnFromAndLeavesTheRunAlone) {
     EXPECT_EQ(read_file(out / "stats.csv"), stats) << c.what;
     EXPECT_EQ(read_file(out / "summary.json"), summary) << c.what;
   }
+  // A run that is done has nothing to resume: it says so and leaves its files as they are (its
+  // summary was rewritten as a second segment).
+  std::ofstream(checkpoint, std::ios::binary) << good;
+  write("hang.json", kHangingSheet);
+  EXPECT_EQ(resume({"--frames", "2"}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find("is done (2 frames); nothing to resume"), std::string::npos) << out_.str();
+  EXPECT_EQ(read_file(out / "stats.csv"), stats);
+  EXPECT_EQ(read_file(out / "summary.json"), summary);
 }
 
 TEST_F(CliTest, Table1ReadsARunsStatistics) {
