@@ -24,6 +24,15 @@ double parse_number(const std::string& tok, const std::string& path, int line) {
   return value;
 }
 
+// A position or material coordinate: in metres, so nothing near the doubles' range (a vertex at
+// 1e308 would make every area and normal overflow, and be reported as a zero-area face).
+double parse_coordinate(const std::string& tok, const std::string& path, int line) {
+  constexpr double kFarthest = 1e5;
+  const double value = parse_number(tok, path, line);
+  if (std::abs(value) > kFarthest) throw InputError(path, line_place(line), "coordinate " + tok + " is beyond 100 km (coordinates are metres)");
+  return value;
+}
+
 // OBJ indices are 1-based; negative ones count back from the last element read so far.
 int32_t parse_index(const std::string& tok, std::size_t count, const std::string& what, const std::string& path, int line) {
   long long value = 0;
@@ -55,10 +64,11 @@ MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector
     for (std::string t; ss >> t;) toks.push_back(t);
     if (tag == "v") {
       if (toks.size() < 3) throw InputError(path, line_place(line), "'v' needs 3 coordinates");
-      src.positions.emplace_back(parse_number(toks[0], path, line), parse_number(toks[1], path, line), parse_number(toks[2], path, line));
+      src.positions.emplace_back(parse_coordinate(toks[0], path, line), parse_coordinate(toks[1], path, line),
+                                 parse_coordinate(toks[2], path, line));
     } else if (tag == "vt") {
       if (toks.size() < 2) throw InputError(path, line_place(line), "'vt' needs 2 coordinates");
-      src.uvs.emplace_back(parse_number(toks[0], path, line), parse_number(toks[1], path, line));
+      src.uvs.emplace_back(parse_coordinate(toks[0], path, line), parse_coordinate(toks[1], path, line));
     } else if (tag == "f") {
       if (toks.size() < 3) throw InputError(path, line_place(line), "a face needs at least 3 corners");
       std::vector<Corner> corners;

@@ -248,6 +248,8 @@ TEST(ObjErrors, ZeroAreaInWorldSpace) { expect_error({"zero_area_world.obj", 15,
 
 TEST(ObjErrors, ClockwiseInMaterialSpace) { expect_error({"clockwise.obj", 11, {"clockwise", "material space"}}); }
 
+TEST(ObjErrors, CoordinateBeyondAHundredKilometres) { expect_error({"far_vertex.obj", 4, {"1e308", "beyond 100 km"}}); }
+
 TEST(ObjErrors, BadNumber) { expect_error({"bad_number.obj", 4, {"expected a number", "1x"}}); }
 
 TEST(ObjErrors, MissingTextureIndex) { expect_error({"missing_vt.obj", 11, {"vt"}}); }
