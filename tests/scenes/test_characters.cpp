@@ -10,26 +10,12 @@
 #include "collision/distance.hpp"
 #include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
-#include "support/triangle_soup.hpp"
+#include "support/scene_crossings.hpp"
 
 namespace vdc {
 namespace {
 
-// Every crossing in one part of a run: each garment against its bodies, the other garments and
-// itself. Returns a description of the first, or "" when there is none.
-std::string first_crossing(const Scene& part) {
-  for (std::size_t i = 0; i < part.garments.size(); ++i) {
-    const GarmentSpec& g = part.garments[i];
-    if (const int n = test::self_crossings(g.mesh))
-      return g.name + " crosses itself (" + std::to_string(n) + " face pairs)";
-    for (const ObstacleSpec& o : part.obstacles)
-      if (const int n = test::crossings_between(g.mesh, o.mesh)) return g.name + " crosses " + o.name + " (" + std::to_string(n) + " face pairs)";
-    for (std::size_t j = i + 1; j < part.garments.size(); ++j)
-      if (const int n = test::crossings_between(g.mesh, part.garments[j].mesh))
-        return g.name + " crosses " + part.garments[j].name + " (" + std::to_string(n) + " face pairs)";
-  }
-  return "";
-}
+using test::first_crossing;
 
 Scene character_scene(const std::string& name, double test_fixed_size) {
   Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/" + name + ".json");
