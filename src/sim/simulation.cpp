@@ -117,9 +117,9 @@ std::vector<std::vector<Vec3>> Simulation::obstacle_positions(double t) {
 void Simulation::remesh_garments(FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
   // The meshes the frame starts with, free of crossings when the last step ended without any: the
-  // fallback for a remesh whose crossings untangling cannot remove.
-  std::vector<Mesh> started_with;
-  for (const auto& g : scene_.garments) started_with.push_back(g.mesh);
+  // fallback for a remesh whose crossings untangling cannot remove (size_and_remesh keeps them as
+  // sized, so that they carry this frame's view and compression factors).
+  std::vector<Mesh> started_with(scene_.garments.size());
   const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
   // The collider's hierarchies, unless a restart will drop them (a resumed run has none yet, and
   // must find what an uninterrupted one finds).
@@ -204,16 +204,8 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
       const auto& coarsening = mesh.face_attrs().get<double>(kCoarseningAttr);
       auto& compression = mesh.face_attrs().get_or_add<double>(kCompressionAttr, 1.0);
       for (FaceId f : mesh.faces()) compression[f] = coarse_compression_factor(coarsening[f]);
-      // The start mesh (the same faces until remesh() below) is the frame's fallback
-      // (keep_fewer_crossings): it goes on with this frame's factors, not the last frame's.
-      const auto& factor = mesh.face_attrs().get<double>(kViewFactorAttr);
-      auto& start_factor = started_with[gi].face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
-      auto& start_compression = started_with[gi].face_attrs().get_or_add<double>(kCompressionAttr, 1.0);
-      for (FaceId f : mesh.faces()) {
-        start_factor[f] = factor[f];
-        start_compression[f] = compression[f];
-      }
     }
+    started_with[gi] = mesh;  // sizing moved no node: the frame's start mesh, with this frame's factors
     remeshed[gi] = remesh(mesh);
   });
   return remeshed;

@@ -96,8 +96,8 @@ class Simulation {
  private:
   void rebuild();                       // elements, assembler and solver from the meshes
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
-  // Sizes and remeshes every garment; a view run's factors also go onto `started_with`, the
-  // frame's start meshes, so that a fallback to them goes on with this frame's.
+  // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
+  // `started_with` (one slot a garment): the fallback goes on with this frame's factors.
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                            const std::vector<std::vector<ObstaclePlane>>& planes,
                                            std::vector<Mesh>& started_with);
