@@ -337,7 +337,8 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return kExitOk;
     }
     if (args[0] == "bench") {
-      if (args.size() < 2 || args[1] != "table1") throw UsageError("bench expects a benchmark name: table1");
+      if (args.size() < 2) throw UsageError("bench expects a benchmark name: table1");
+      if (args[1] != "table1") throw UsageError("bench: unknown benchmark '" + args[1] + "' (there is table1)");
       return table1_command(std::vector<std::string>(args.begin() + 2, args.end()), out, err);
     }
     if (args[0] == "check") return check_command(std::vector<std::string>(args.begin() + 1, args.end()), out);

@@ -6,6 +6,8 @@
 #include <limits>
 #include <sstream>
 
+#include "io/input_file.hpp"
+
 namespace vdc {
 
 namespace {
@@ -34,16 +36,7 @@ std::string line_column(const std::string& text, std::size_t offset) {
 }  // namespace
 
 JsonValue JsonValue::load_file(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError(path, "", fs::exists(path, ec) ? "not a regular file" : "cannot open file");
-  if (fs::file_size(path, ec) > kMaxFileBytes)
-    throw InputError(path, "", "larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB, too large for a JSON file of this program");
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  const std::string text = read_input_text(path, kMaxFileBytes, "JSON");
   try {
     return JsonValue(nlohmann::json::parse(text), path, "");
   } catch (const nlohmann::json::parse_error& e) {

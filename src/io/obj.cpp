@@ -7,11 +7,15 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "io/text_file.hpp"
 
 namespace vdc {
 
 namespace {
+
+// The largest OBJ read: a mesh of some 20 million faces.
+constexpr std::uintmax_t kMaxObjBytes = std::uintmax_t{1} << 30;
 
 std::string line_place(int line) { return "line " + std::to_string(line); }
 
@@ -48,8 +52,7 @@ int32_t parse_index(const std::string& tok, std::size_t count, const std::string
 }  // namespace
 
 MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector<int>* face_lines) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open file");
+  std::istringstream in(read_input_text(path, kMaxObjBytes, "OBJ"));
   MeshSource src;
   std::vector<int> lines;
   std::string raw;

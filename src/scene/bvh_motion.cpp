@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 
 namespace vdc {
 
@@ -165,11 +166,8 @@ Motion parse_bvh(const std::string& text, const std::string& name) {
 }
 
 Motion read_bvh(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_bvh(ss.str(), path);
+  constexpr std::uintmax_t kMaxBvhBytes = std::uintmax_t{1} << 30;
+  return parse_bvh(read_input_text(path, kMaxBvhBytes, "BVH"), path);
 }
 
 bool write_bvh(const Motion& motion, const std::string& path) {

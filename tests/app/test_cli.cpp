@@ -1,5 +1,6 @@
-// The command line: bad inputs give exit status 2 with a message naming the problem and leave
-// no output behind; a short good run writes frames, stats and summary.
+// The command line: usage errors, a short good run's frames, stats and summary, results that
+// cannot be written, resumption, check, render, fidelity and table1. Bad inputs of every kind
+// are the corpus's (tests/corpus, test_corpus.cpp).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -92,127 +93,6 @@ class CliTest : public ::testing::Test {
   fs::path dir_;
   std::ostringstream out_, err_;
 };
-
-TEST_F(CliTest, BadInputsExitTwoWithAClearMessageAndNoOutput) {
-  auto run_scene = [](const std::string& path, const std::string& out) { return std::vector<std::string>{"run", path, "--out", out}; };
-  struct Row {
-    std::string label;
-    std::function<std::string()> make_scene;  // returns the scene path
-    std::vector<std::string> extra_args;
-    std::vector<std::string> expect;  // substrings of the error
-  };
-  std::vector<Row> rows = {
-      {"malformed JSON", [&] { return write("scene.json", "{\"frames\": 2,\n  \"garments\": [}\n"); }, {}, {"scene.json", "line 2, column 16", "syntax error"}},
-      {"missing mesh file", [&] { return scene("", "", "\"cotton.json\"", "\"nowhere.obj\""); }, {}, {"garments[0].mesh", "file not found", "nowhere.obj"}},
-      {"missing material file", [&] { return scene("", "", "\"silk.json\""); }, {}, {"garments[0].material", "file not found"}},
-      {"unknown key", [&] { return scene(", \"colour\": 3"); }, {}, {"garments[0].colour", "unknown key"}},
-      {"unknown top-level key", [&] { return scene("", "\"fps\": 25, "); }, {}, {"fps", "unknown key"}},
-      {"wrong type", [&] { return scene("", "\"substeps\": \"eight\", "); }, {}, {"substeps", "expected an integer"}},
-      {"non-manifold OBJ",
-       [&] {
-         write("nm.obj", "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 0 1 0\nv 0 -1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\nf 2/1 1/2 4/3\nf 1/1 2/2 5/3\n");
-         return scene("", "", "\"cotton.json\"", "\"nm.obj\"");
-       },
-       {},
-       {"garments[0].mesh", "nm.obj", "line 11", "non-manifold"}},
-      {"zero-area face",
-       [&] {
-         write("za.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
-         return scene("", "", "\"cotton.json\"", "\"za.obj\"");
-       },
-       {},
-       {"za.obj", "line 7", "zero area in world space"}},
-      {"negative density",
-       [&] { return scene("", "", R"({"density": -1, "stretch": {"warp": 1, "weft": 1, "shear": 1}, "bending": 0})"); },
-       {},
-       {"garments[0].material.density", "greater than 0"}},
-      {"zero frame time", [&] { return scene("", "\"frame_time\": 0, "); }, {}, {"frame_time", "greater than 0"}},
-      // Hostile numbers, names and sizes: refused where they are, not wrapped, crashed on or run.
-      {"frames that wrap an int", [&] { return scene("", "\"frames\": 4294967297, "); }, {}, {"frames", "between 1 and 10,000,000"}},
-      {"frames past an int", [&] { return scene("", "\"frames\": 2147483648, "); }, {}, {"frames", "between 1 and 10,000,000"}},
-      {"an integer past 64 bits", [&] { return scene("", "\"substeps\": 18446744073709551615, "); }, {}, {"substeps", "out of range"}},
-      {"a number past the doubles", [&] { return scene("", "\"frame_time\": 1e400, "); }, {}, {"scene.json", "line 1, column", "number out of range: 1e400"}},
-      {"a long string with a bad escape",
-       [&] { return write("scene.json", "{\"name\": \"" + std::string(30000, 'a') + "\\q\"}"); },
-       {},
-       {"scene.json", "line 1, column 30012", "syntax error", "characters)"}},
-      {"a scene name that leaves the output directory", [&] { return scene("", "\"name\": \"../../escaped\", "); }, {}, {"name", "one file name"}},
-      {"a directory as the scene",
-       [&] {
-         fs::create_directories(dir_ / "a_directory");
-         return (dir_ / "a_directory").string();
-       },
-       {},
-       {"a_directory", "not a regular file"}},
-      {"a hundred thousand threads", [&] { return scene(); }, {"--threads", "100000"}, {"--threads", "from 1 to 256", "100000"}},
-      {"a negative mesh interval", [&] { return scene(); }, {"--mesh-every", "-1"}, {"--mesh-every", "from 0 to 1000000"}},
-      {"impact separation beyond the thickness",
-       [&] { return scene("", R"("collision": {"thickness": 0.002, "impact_separation": 0.003}, )"); },
-       {},
-       {"collision.impact_separation", "at most the thickness"}},
-      {"negative untangle iterations",
-       [&] { return scene("", R"("collision": {"untangle_iterations": -1}, )"); },
-       {},
-       {"collision.untangle_iterations", "between 0 and 10000"}},
-      {"frames -1", [&] { return scene(); }, {"--frames", "-1"}, {"--frames", "-1"}},
-      {"unknown mode", [&] { return scene(); }, {"--mode", "fast"}, {"--mode", "fast"}},
-      {"unknown option", [&] { return scene(); }, {"--speed", "2"}, {"unknown option", "--speed"}},
-      {"missing frame of an obstacle sequence",
-       [&] {
-         write("body.01.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nf 1 3 2\n");
-         write("body.02.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nf 1 3 2\n");
-         return scene("", R"("obstacles": [{"name": "b", "mesh": {"sequence": {"files": "body.%02d.obj", "count": 3}}}], )");
-       },
-       {},
-       {"obstacles[0].mesh.sequence.files", "body.03.obj", "file not found", "frame 3"}},
-      {"obstacle sequence that changes topology",
-       [&] {
-         write("body.01.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nv 1 -1 1\nf 1 3 2\nf 2 3 4\n");
-         write("body.02.obj", "v 0 -1 0\nv 1 -1 0\nv 0 -1 1\nv 1 -1 1\nf 1 3 2\nf 2 4 3\n");
-         return scene("", R"("obstacles": [{"name": "b", "mesh": {"sequence": {"files": "body.%02d.obj", "count": 2}}}], )");
-       },
-       {},
-       {"body.02.obj", "face 2", "other vertices"}},
-      {"view mode without a camera", [&] { return scene(); }, {"--mode", "view"}, {"scene.json", "camera", "--mode view needs a camera"}},
-      {"view ceiling below its floor", [&] { return scene("", R"("view": {"l_min": 4, "l_max": 2}, )"); }, {}, {"view.l_max", "at least l_min"}},
-      {"negative settle time", [&] { return scene("", R"("view": {"settle": -0.1}, )"); }, {}, {"view.settle"}},
-      {"missing scene", [&] { return (dir_ / "nothing.json").string(); }, {}, {"nothing.json", "cannot open"}},
-      {"obstacle of a group without garments",
-       [&] { return scene("", R"("obstacles": [{"name": "b", "group": "x", "mesh": {"sphere": {"radius": 0.1}}}], )"); },
-       {},
-       {"obstacles[0].group", "no garment is in group 'x'"}},
-      {"handle attached to a missing obstacle",
-       [&] { return scene(R"(, "handles": [{"uv": [[0, 1]], "attach": {"obstacle": "nobody", "joint": "Hips"}}])"); },
-       {},
-       {"garments[0].handles[0].attach.obstacle", "no obstacle named 'nobody'"}},
-      {"handle attached to an obstacle that is not a character",
-       [&] {
-         return scene(R"(, "handles": [{"uv": [[0, 1]], "attach": {"obstacle": "b", "joint": "Hips"}}])",
-                      R"("obstacles": [{"name": "b", "mesh": {"sphere": {"radius": 0.1}}}], )");
-       },
-       {},
-       {"attach.obstacle", "'b' is not a character"}},
-      {"handle box with no node", [&] { return scene(R"(, "handles": [{"box": [[5, 5, 5], [6, 6, 6]]}])"); }, {}, {"handles[0].box", "no node"}},
-      {"tube upside down", [&] { return scene("", "", "\"cotton.json\"", R"({"tube": {"top": [0.3, 0.2], "bottom": [1.0, 0.3]}})"); }, {},
-       {"garments[0].mesh.tube.bottom", "below the top ring"}},
-      {"dress too narrow", [&] { return scene("", "", "\"cotton.json\"", R"({"dress": {"bodice_radius": 0.1}})"); }, {},
-       {"bodice_radius", "between 0.16 and 0.3"}},
-      {"mesh-every not a number", [&] { return scene(); }, {"--mesh-every", "x"}, {"--mesh-every", "'x'"}},
-      {"perturbation beyond a thousandth", [&] { return scene(); }, {"--perturb", "0.01"}, {"--perturb", "-0.001 to 0.001", "'0.01'"}},
-      {"group the scene does not have", [&] { return scene(R"(, "group": "left")"); }, {"--group", "right"},
-       {"--group", "scene.json", "no garment group 'right'", "its groups: left"}},
-  };
-  for (const Row& row : rows) {
-    std::string path = row.make_scene();
-    auto args = run_scene(path, out_dir());
-    args.insert(args.end(), row.extra_args.begin(), row.extra_args.end());
-    EXPECT_EQ(run(args), kExitBadInput) << row.label;
-    const std::string msg = err_.str();
-    for (const auto& part : row.expect) EXPECT_NE(msg.find(part), std::string::npos) << row.label << ": '" << part << "' not in: " << msg;
-    EXPECT_EQ(std::count(msg.begin(), msg.end(), '\n'), 1) << row.label << ": one line expected: " << msg;
-    EXPECT_FALSE(fs::exists(out_dir())) << row.label << " left output behind";
-  }
-}
 
 TEST_F(CliTest, UsageErrors) {
   EXPECT_EQ(run({}), kExitBadInput);

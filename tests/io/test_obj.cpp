@@ -267,7 +267,7 @@ TEST(ObjErrors, BowTieVertex) {
 TEST(ObjErrors, MissingFile) {
   TempFile never_written;
   InputError e = read_error(never_written.path());
-  EXPECT_TRUE(contains(e.what(), "cannot open")) << e.what();
+  EXPECT_TRUE(contains(e.what(), "file not found")) << e.what();
   EXPECT_TRUE(contains(e.what(), never_written.path())) << e.what();
 }
 
