@@ -6,7 +6,7 @@ MODE ?= view
 FRAMES ?= 120
 OUT ?= out/solo-dancer
 
-.PHONY: all deps configure build build-asan run test bench clean
+.PHONY: all deps configure build build-asan run test bench fuzz clean
 
 all: build
 
@@ -39,5 +39,15 @@ test: build build-asan
 bench: build
 	build/bench/vdcloth_bench
 
+# build-fuzz/: the libFuzzer targets (fuzz/README.md), built by clang with every layer
+# instrumented, each run FUZZ_SECONDS (default 15 minutes) from the corpus.
+FUZZ_SECONDS ?= 900
+fuzz:
+	@scripts/install-deps.sh fuzz
+	CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+	  -DVDCLOTH_FUZZ=ON -DVDCLOTH_TESTS=OFF -DVDCLOTH_SCENE_TESTS=OFF -DVDCLOTH_BENCH=OFF
+	cmake --build build-fuzz -j $(JOBS)
+	fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan build-fuzz

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages vdcloth needs to build, test and run.
+# Installs the Debian packages vdcloth needs to build, test and run; with the argument `fuzz`,
+# also clang, its libFuzzer and sanitizer runtimes and its OpenMP (`make fuzz`).
 # Idempotent: when every package is present it returns without touching apt.
 set -euo pipefail
 
@@ -13,6 +14,13 @@ packages=(
   libbenchmark-dev       # bench/
   assimp-testmodels      # CMU motion capture BVH files for the importer's tests
 )
+if [ "${1:-}" = "fuzz" ]; then
+  packages+=(
+    clang                # the fuzz targets' compiler
+    libclang-rt-14-dev   # libFuzzer and clang's AddressSanitizer and UBSan runtimes
+    libomp-dev           # OpenMP for clang
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

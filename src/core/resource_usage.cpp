@@ -1,6 +1,7 @@
 #include "core/resource_usage.hpp"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
@@ -19,6 +20,13 @@ CpuTicks machine_ticks() {
     if (i == 7) t.steal = v;
   }
   return t;
+}
+
+long resident_kib() {
+  std::ifstream statm("/proc/self/statm");
+  long size_pages = 0, resident_pages = 0;
+  if (!(statm >> size_pages >> resident_pages)) return 0;
+  return resident_pages * (::sysconf(_SC_PAGESIZE) / 1024);
 }
 
 ResourceUsage process_usage(const ResourceUsage& before, const CpuTicks& start, double wall_now) {

@@ -21,6 +21,10 @@ struct ResourceUsage {
   double steal() const { return machine.total > 0 ? static_cast<double>(machine.steal) / static_cast<double>(machine.total) : -1.0; }
 };
 
+// This process's resident memory now, KiB (from /proc/self/statm; 0 where it cannot be read):
+// unlike the peak, it falls when memory is given back, so a long run's rows show a leak as growth.
+long resident_kib();
+
 // This process's usage so far, added to `before` (the earlier pieces of a resumed run): CPU time
 // summed, peak memory the larger, and the machine's ticks since `start`. `wall_seconds` is
 // before's plus `wall_now`.

@@ -60,6 +60,25 @@ std::vector<std::map<std::string, std::string>> csv_rows(const fs::path& path) {
   return rows;
 }
 
+// The value in a named column of stats.csv at a frame.
+double stats_column(const fs::path& path, const std::string& column, int frame) {
+  std::ifstream in(path);
+  std::vector<std::string> names;
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream cells(line);
+    std::vector<std::string> row;
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(cell);
+    if (names.empty()) {
+      names = row;
+      continue;
+    }
+    const auto c = static_cast<std::size_t>(std::find(names.begin(), names.end(), column) - names.begin());
+    if (c < row.size() && std::stoi(row[0]) == frame) return std::stod(row[c]);
+  }
+  ADD_FAILURE() << path << " has no " << column << " at frame " << frame;
+  return 0;
+}
+
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -119,6 +138,8 @@ TEST_F(CliTest, ShortRunWritesFramesStatsAndSummary) {
   EXPECT_EQ(summary["status"], "done");
   EXPECT_EQ(summary["frames"], 3);
   EXPECT_EQ(summary["mode"], "fixed");
+  // Resident memory at each frame's end: this test program's, a few MiB at least.
+  for (int f = 1; f <= 3; ++f) EXPECT_GT(stats_column(dir_ / "out" / "stats.csv", "resident_mib", f), 1.0) << f;
 }
 
 TEST_F(CliTest, RunWritesMeshesEveryNthFrameOnly) {
@@ -286,26 +307,9 @@ std::string read_file(const fs::path& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-// stats.csv without the columns that time the run (named *seconds), which differ run to run.
-// The value in a named column of stats.csv at a frame.
-double stats_column(const fs::path& path, const std::string& column, int frame) {
-  std::ifstream in(path);
-  std::vector<std::string> names;
-  for (std::string line; std::getline(in, line);) {
-    std::stringstream cells(line);
-    std::vector<std::string> row;
-    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(cell);
-    if (names.empty()) {
-      names = row;
-      continue;
-    }
-    const auto c = static_cast<std::size_t>(std::find(names.begin(), names.end(), column) - names.begin());
-    if (c < row.size() && std::stoi(row[0]) == frame) return std::stod(row[c]);
-  }
-  ADD_FAILURE() << path << " has no " << column << " at frame " << frame;
-  return 0;
-}
 
+// stats.csv without the columns that measure the process (times, named *seconds, and the
+// resident memory), which differ run to run.
 std::vector<std::string> stats_without_timings(const fs::path& path) {
   std::ifstream in(path);
   std::vector<std::string> rows;
@@ -314,7 +318,7 @@ std::vector<std::string> stats_without_timings(const fs::path& path) {
     std::stringstream cells(line);
     std::string row, cell;
     for (std::size_t c = 0; std::getline(cells, cell, ','); ++c) {
-      if (rows.empty()) timing.push_back(cell.size() >= 7 && cell.compare(cell.size() - 7, 7, "seconds") == 0);
+      if (rows.empty()) timing.push_back((cell.size() >= 7 && cell.compare(cell.size() - 7, 7, "seconds") == 0) || cell == "resident_mib");
       if (c < timing.size() && !timing[c]) row += cell + ",";
     }
     rows.push_back(row);

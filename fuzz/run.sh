@@ -1,0 +1,36 @@
+#!/bin/bash
+# Runs each libFuzzer target of BUILD (default build-fuzz) for SECONDS (default 900), seeded with
+# the corpus (tests/corpus, tests/data, fuzz/corpus/<target>), then merges what added coverage
+# into fuzz/corpus/<target>, which `make test` replays. A crash, a leak, a timeout or memory past
+# the limit leaves its input in BUILD/findings/ and the script's exit status 1. One line per target
+# goes to standard output: executions, their rate, coverage, corpus size and findings.
+#
+#   fuzz/run.sh [BUILD] [SECONDS] [TARGET...]
+set -u
+build=${1:-build-fuzz}
+seconds=${2:-900}
+shift $(($# < 2 ? $# : 2))
+targets=("$@")
+[ ${#targets[@]} -eq 0 ] && targets=(scene obj bvh checkpoint)
+here=$(cd "$(dirname "$0")/.." && pwd)
+status=0
+for target in "${targets[@]}"; do
+  program="$build/fuzz/vdcloth_fuzz_$target"
+  work="$build/fuzz-corpus/$target"
+  findings="$build/findings"
+  mkdir -p "$work" "$findings" "$here/fuzz/corpus/$target"
+  log="$build/fuzz-$target.log"
+  # -timeout: a scene may build a large procedural mesh or body, seconds of honest work.
+  "$program" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 -print_final_stats=1 \
+    -artifact_prefix="$findings/$target-" "$work" "$here/fuzz/corpus/$target" "$here/tests/corpus" "$here/tests/data" >"$log" 2>&1
+  code=$?
+  runs=$(awk '/stat::number_of_executed_units/ { print $2 }' "$log")
+  rate=$(awk '/stat::average_exec_per_sec/ { print $2 }' "$log")
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1)
+  found=$(ls "$findings" | grep -c "^$target-")
+  "$program" -merge=1 "$here/fuzz/corpus/$target" "$work" >"$build/fuzz-$target-merge.log" 2>&1
+  saved=$(ls "$here/fuzz/corpus/$target" | wc -l)
+  echo "$target: ${seconds} s, ${runs:-?} executions (${rate:-?}/s), ${cov:-cov: ?}, exit $code, $found finding(s), $saved inputs saved in fuzz/corpus/$target"
+  [ "$code" -ne 0 ] || [ "$found" -ne 0 ] && status=1
+done
+exit $status
