@@ -21,14 +21,18 @@ for target in "${targets[@]}"; do
   mkdir -p "$work" "$findings" "$here/fuzz/corpus/$target"
   log="$build/fuzz-$target.log"
   # -timeout: a scene may build a large procedural mesh or body, seconds of honest work.
-  "$program" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=4096 -print_final_stats=1 \
+  # -max_len: new inputs stay small (a checkpoint is some 30 kB), and so does the saved corpus;
+  # larger seeds are cut to it (the corpus test runs them whole).
+  max_len=4096
+  [ "$target" = checkpoint ] && max_len=65536
+  "$program" -max_total_time="$seconds" -max_len=$max_len -timeout=60 -rss_limit_mb=4096 -print_final_stats=1 \
     -artifact_prefix="$findings/$target-" "$work" "$here/fuzz/corpus/$target" "$here/tests/corpus" "$here/tests/data" >"$log" 2>&1
   code=$?
   runs=$(awk '/stat::number_of_executed_units/ { print $2 }' "$log")
   rate=$(awk '/stat::average_exec_per_sec/ { print $2 }' "$log")
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1)
   found=$(ls "$findings" | grep -c "^$target-")
-  "$program" -merge=1 "$here/fuzz/corpus/$target" "$work" >"$build/fuzz-$target-merge.log" 2>&1
+  "$program" -merge=1 -max_len=$max_len "$here/fuzz/corpus/$target" "$work" >"$build/fuzz-$target-merge.log" 2>&1
   saved=$(ls "$here/fuzz/corpus/$target" | wc -l)
   echo "$target: ${seconds} s, ${runs:-?} executions (${rate:-?}/s), ${cov:-cov: ?}, exit $code, $found finding(s), $saved inputs saved in fuzz/corpus/$target"
   [ "$code" -ne 0 ] || [ "$found" -ne 0 ] && status=1

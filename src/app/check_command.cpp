@@ -81,7 +81,7 @@ CheckSummary check_run(const std::string& run, int every, std::ostream& out) {
     std::map<std::string, TriangleSoup> meshes;
     for (const auto& [key, path] : files) meshes.emplace(key, read_soup(path));
     bool bad = false;
-    auto report = [&](const std::string& a, const std::string& b, int pairs) {
+    auto report = [&, frame = frame](const std::string& a, const std::string& b, int pairs) {
       if (pairs == 0) return;
       bad = true;
       csv << frame << "," << a << "," << b << "," << pairs << "\n";

@@ -189,7 +189,7 @@ std::string format_duration(double s) {
 // stopped.
 Checkpoint checkpoint_to_resume(const RunArgs& args, const std::string& dir, uint64_t build_hash) {
   const std::string path = dir + "/" + kCheckpointFile;
-  if (!fs::is_regular_file(path))
+  if (std::error_code ec; !fs::is_regular_file(path, ec))
     throw InputError(path, "", "no checkpoint to resume from (the run was made with --checkpoint-every 0, or stopped before its first)");
   Checkpoint c = read_checkpoint(path);
   if (c.scene_hash != file_hash(args.scene))

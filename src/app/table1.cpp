@@ -339,7 +339,7 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
   std::map<std::string, int> scene_frames;
   for (const auto& name : scenes) {
     const std::string path = args.scenes + "/" + name + ".json";
-    if (!fs::is_regular_file(path)) throw InputError(path, "", "scene not found (use --scenes DIR)");
+    if (std::error_code ec; !fs::is_regular_file(path, ec)) throw InputError(path, "", "scene not found (use --scenes DIR)");
     const Scene scene = load_scene(path);
     if (!scene.camera) throw InputError(path, "camera", "table1 needs a camera for its view-dependent runs");
     scene_frames[name] = scene.frames;

@@ -6,6 +6,13 @@
 
 namespace vdc {
 
+// A text quoted in a message (a path, a token, a parser's complaint), cut to `most` characters:
+// from hostile input it can be a whole file.
+inline std::string shortened(const std::string& text, std::size_t most = 200) {
+  if (text.size() <= most) return text;
+  return text.substr(0, most) + "... (" + std::to_string(text.size()) + " characters)";
+}
+
 // Something the user gave us is wrong: names the file, the place in it and the problem.
 class InputError : public std::runtime_error {
  public:
@@ -17,7 +24,7 @@ class InputError : public std::runtime_error {
 
  private:
   static std::string compose(const std::string& file, const std::string& place, const std::string& problem) {
-    std::string s = file;
+    std::string s = shortened(file);  // a hostile path can be thousands of characters
     if (!place.empty()) s += (s.empty() ? "" : ":") + place;
     return s.empty() ? problem : s + ": " + problem;
   }

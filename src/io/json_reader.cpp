@@ -12,13 +12,6 @@ namespace vdc {
 
 namespace {
 
-// A problem quoted from the parser, cut short: its last-read token can be a whole file.
-std::string shortened(const std::string& text) {
-  constexpr std::size_t kMost = 200;
-  if (text.size() <= kMost) return text;
-  return text.substr(0, kMost) + "... (" + std::to_string(text.size()) + " characters)";
-}
-
 // "line L, column C" of byte `offset` of `text` (both counted from 1).
 std::string line_column(const std::string& text, std::size_t offset) {
   std::size_t line = 1, column = 1;

@@ -28,8 +28,14 @@ std::string resolve(const JsonValue& j, const std::string& scene_path) {
   std::string rel = j.string();
   if (rel.empty()) j.fail("empty file name");
   fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(scene_path).parent_path() / rel;
-  if (!fs::exists(p)) j.fail("file not found: " + p.string());
-  if (!fs::is_regular_file(p)) j.fail("not a regular file: " + p.string());
+  std::error_code ec;
+  const fs::file_status status = fs::status(p, ec);
+  if (!fs::exists(status)) {
+    // A name the system cannot look up (too long, a loop of links) is named with the reason.
+    const bool absent = !ec || ec == std::errc::no_such_file_or_directory || ec == std::errc::not_a_directory;
+    j.fail((absent ? std::string("file not found") : "cannot look up the file (" + ec.message() + ")") + ": " + shortened(p.string()));
+  }
+  if (!fs::is_regular_file(status)) j.fail("not a regular file: " + shortened(p.string()));
   return p.string();
 }
 
@@ -270,7 +276,8 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
     ObjSequence s = with_key(files, [&] {
       std::vector<std::string> names = sequence_files(pattern, static_cast<int>(first), static_cast<int>(count));
       for (const auto& n : names)
-        if (!fs::is_regular_file(n)) throw InputError(n, "", "file not found (frame " + std::to_string(&n - names.data() + first) + " of the sequence)");
+        if (std::error_code ec; !fs::is_regular_file(n, ec))
+          throw InputError(n, "", "file not found (frame " + std::to_string(&n - names.data() + first) + " of the sequence)");
       return load_obj_sequence(names, dt);
     });
     o.mesh = std::move(s.mesh);
