@@ -3,7 +3,9 @@
 #include "collision/collider.hpp"
 
 #include <algorithm>
+#include <optional>
 
+#include "collision/candidates.hpp"
 #include "collision/impact_zone.hpp"
 #include "collision/narrow_phase.hpp"
 
@@ -156,8 +158,6 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     for (int32_t n : f) cloth_node_used[static_cast<std::size_t>(n)] = 1;
 
   ImpactZones zones(num_nodes_);
-  const Bvh* face_bvh = nullptr;
-  const Bvh* edge_bvh = nullptr;
   std::vector<char> moved(static_cast<std::size_t>(num_nodes_), 1);
   bool clear = false;
 
@@ -171,47 +171,16 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const auto& e = cloth_edges_[i];
       return path_box({{-1, e[0]}, {-1, e[1]}});
     });
-    face_bvh = &cloth_face_tree_.update(face_boxes);
-    edge_bvh = &cloth_edge_tree_.update(edge_boxes);
+    const CandidateTrees trees{cloth_faces_, cloth_edges_, cloth_node_used, cloth_face_tree_.update(face_boxes),
+                               cloth_edge_tree_.update(edge_boxes), obstacle_face_bvh, obstacle_edge_bvh};
+    // After the first round only pairs with a node that a projection moved can hold a new impact.
+    std::optional<MovedPrimitives> moved_primitives;
+    if (round > 0) moved_primitives.emplace(moved, trees, face_boxes, edge_boxes);
+    const MovedPrimitives* only_moved = moved_primitives ? &*moved_primitives : nullptr;
 
-    // After the first round, only pairs with a node that a projection moved can hold a new
-    // impact: primitives with such a node query the whole hierarchies, the others only the small
-    // hierarchies over the moved cloth primitives (and no obstacle, which did not move).
-    const bool first_round = round == 0;
-    auto has_moved = [&](std::initializer_list<int32_t> nodes) {
-      for (int32_t n : nodes)
-        if (moved[static_cast<std::size_t>(n)]) return true;
-      return false;
-    };
-    std::vector<int32_t> moved_faces, moved_edges;  // cloth primitives with a moved node
-    std::vector<Aabb> moved_face_boxes, moved_edge_boxes;
-    if (!first_round) {
-      for (std::size_t f = 0; f < cloth_faces_.size(); ++f)
-        if (has_moved({cloth_faces_[f][0], cloth_faces_[f][1], cloth_faces_[f][2]})) {
-          moved_faces.push_back(static_cast<int32_t>(f));
-          moved_face_boxes.push_back(face_boxes[f]);
-        }
-      for (std::size_t e = 0; e < cloth_edges_.size(); ++e)
-        if (has_moved({cloth_edges_[e][0], cloth_edges_[e][1]})) {
-          moved_edges.push_back(static_cast<int32_t>(e));
-          moved_edge_boxes.push_back(edge_boxes[e]);
-        }
-    }
-    const Bvh moved_face_bvh(moved_face_boxes), moved_edge_bvh(moved_edge_boxes);
-    // Calls f(face) for the cloth faces a box meets: all of them, or only the moved ones.
-    auto cloth_faces_near = [&](const Aabb& box, bool all, auto&& f) {
-      if (all) face_bvh->query(box, f);
-      else moved_face_bvh.query(box, [&](int32_t k) { f(moved_faces[static_cast<std::size_t>(k)]); });
-    };
-    auto cloth_edges_near = [&](const Aabb& box, bool all, auto&& f) {
-      if (all) edge_bvh->query(box, f);
-      else moved_edge_bvh.query(box, [&](int32_t k) { f(moved_edges[static_cast<std::size_t>(k)]); });
-    };
-
-    // Every query primitive (cloth vertex, obstacle vertex, cloth edge) traverses its hierarchy
-    // and tests its candidates in parallel, into its own list; the lists are taken in primitive
-    // order, so the results do not depend on the thread count. Candidates go to the narrow
-    // phase (narrow_phase.hpp) as the paths of their points over the step.
+    // Candidates go to the narrow phase (narrow_phase.hpp) as the paths of their points over the
+    // step, each query primitive's impacts into its own list; the lists are taken in primitive
+    // order, so the results do not depend on the thread count.
     auto path = [&](const PointRef& p) {
       const bool movable = p.obstacle < 0 && !fixed[static_cast<std::size_t>(p.index)];
       return PointPath{p0(p), p1(p), movable ? p.index : -1};
@@ -226,68 +195,41 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
 
     // Cloth vertices against cloth and obstacle faces.
     std::vector<Hits> vertex_hits(static_cast<std::size_t>(num_nodes_));
-#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
-    for (int32_t v = 0; v < num_nodes_; ++v) {
-      if (!cloth_node_used[static_cast<std::size_t>(v)]) continue;
-      const PointRef p{-1, v};
-      const Aabb box = path_box({p});
-      Hits& out = vertex_hits[static_cast<std::size_t>(v)];
-      const bool all = first_round || moved[static_cast<std::size_t>(v)];
-      cloth_faces_near(box, all, [&](int32_t f) {
-        const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
-        if (t[0] != v && t[1] != v && t[2] != v) vf(p, cloth_tri(static_cast<std::size_t>(f)), out);
-      });
-      if (!all) continue;
-      for (std::size_t o = 0; o < obstacles_.size(); ++o)
-        obstacle_face_bvh[o]->query(box, [&](int32_t f) { vf(p, obstacle_tri(o, static_cast<std::size_t>(f)), out); });
-    }
+    vertex_face_candidates(
+        trees, only_moved, params.threads, [&](int32_t v) { return path_box({PointRef{-1, v}}); },
+        [&](int32_t v, int32_t f) { vf({-1, v}, cloth_tri(static_cast<std::size_t>(f)), vertex_hits[static_cast<std::size_t>(v)]); },
+        [&](int32_t v, std::size_t o, int32_t f) {
+          vf({-1, v}, obstacle_tri(o, static_cast<std::size_t>(f)), vertex_hits[static_cast<std::size_t>(v)]);
+        });
     // Obstacle vertices against cloth faces.
     std::vector<std::vector<Hits>> obstacle_hits(obstacles_.size());
+    std::vector<std::size_t> obstacle_vertices;
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
-      const auto nv = static_cast<int32_t>(obstacle_start[o].size());
-      obstacle_hits[o].resize(static_cast<std::size_t>(nv));
-#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
-      for (int32_t v = 0; v < nv; ++v) {
-        const PointRef p{static_cast<int32_t>(o), v};
-        cloth_faces_near(obstacle_trees_[o].vertex_box(v), first_round,
-                         [&](int32_t f) { vf(p, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]); });
-      }
+      obstacle_vertices.push_back(obstacle_start[o].size());
+      obstacle_hits[o].resize(obstacle_start[o].size());
     }
-    // Cloth edges against cloth edges and obstacle edges, each cloth pair once. In the first
-    // round the cloth edge hierarchy descends together with itself and the obstacles', from
-    // fixed subtrees in parallel, each pair met from its earlier edge in leaf order; later,
-    // every edge queries, each pair from its lower-numbered edge, found through either
-    // hierarchy, and only edges with a moved node meet the obstacles.
-    std::vector<Hits> edge_hits(cloth_edges_.size());
-    auto cloth_pair = [&](int32_t ea, int32_t eb) {
-      const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
-      const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
-      if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
-      ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
-    };
-    auto obstacle_pair = [&](std::size_t o, int32_t ea, int32_t eo) {
-      const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
-      const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
-      const auto oi = static_cast<int32_t>(o);
-      ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
-    };
-    if (first_round) {
-      pairs_by_subtree(*edge_bvh, obstacle_edge_bvh, 0.0, kTraversalUnits, params.threads, cloth_pair, obstacle_pair);
-    } else {
-      const auto num_edges = static_cast<int32_t>(cloth_edges_.size());
-#pragma omp parallel for schedule(dynamic, 128) num_threads(params.threads)
-      for (int32_t ea = 0; ea < num_edges; ++ea) {
-        const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
-        const Aabb box = path_box({{-1, A[0]}, {-1, A[1]}});
-        const bool all = has_moved({A[0], A[1]});
-        cloth_edges_near(box, all, [&](int32_t eb) {
-          if (eb > ea) cloth_pair(ea, eb);
+    obstacle_vertex_candidates(
+        trees, obstacle_vertices, only_moved, params.threads,
+        [&](std::size_t o, int32_t v) { return obstacle_trees_[o].vertex_box(v); },
+        [&](std::size_t o, int32_t v, int32_t f) {
+          vf({static_cast<int32_t>(o), v}, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]);
         });
-        if (!all) continue;
-        for (std::size_t o = 0; o < obstacles_.size(); ++o)
-          obstacle_edge_bvh[o]->query(box, [&](int32_t eo) { obstacle_pair(o, ea, eo); });
-      }
-    }
+    // Cloth edges against cloth edges and obstacle edges.
+    std::vector<Hits> edge_hits(cloth_edges_.size());
+    edge_edge_candidates(
+        trees, only_moved, 0.0, params.threads,
+        [&](int32_t e) { return edge_boxes[static_cast<std::size_t>(e)]; },
+        [&](int32_t ea, int32_t eb) {
+          const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+          const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
+          ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
+        },
+        [&](std::size_t o, int32_t ea, int32_t eo) {
+          const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
+          const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
+          const auto oi = static_cast<int32_t>(o);
+          ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
+        });
     std::vector<ImpactConstraint> found;
     for (const auto& list : vertex_hits) found.insert(found.end(), list.begin(), list.end());
     for (const auto& lists : obstacle_hits)

@@ -85,10 +85,6 @@ class Collider {
   std::vector<const Bvh*> obstacle_face_trees(const std::vector<std::vector<Vec3>>& obstacle_x, int threads);
 
  private:
-  // Subtrees a cloth hierarchy is split into for a parallel descent with another hierarchy:
-  // fixed, so that the pairs found, and their order, do not depend on the thread count.
-  static constexpr int kTraversalUnits = 64;
-
   std::vector<std::array<int32_t, 3>> cloth_faces_;
   std::vector<std::array<int32_t, 2>> cloth_edges_;
   std::vector<std::array<int32_t, 3>> face_edges_;  // per cloth face, indices into cloth_edges_

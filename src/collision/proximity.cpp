@@ -7,6 +7,7 @@
 #include <cmath>
 #include <optional>
 
+#include "collision/candidates.hpp"
 #include "collision/collider.hpp"
 #include "collision/distance.hpp"
 
@@ -87,108 +88,104 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   std::vector<char> used(static_cast<std::size_t>(num_nodes_), 0);
   for (const auto& f : cloth_faces_)
     for (int32_t n : f) used[static_cast<std::size_t>(n)] = 1;
+  const CandidateTrees trees{cloth_faces_, cloth_edges_, used, face_bvh, edge_bvh, obstacle_face_bvh, obstacle_edge_bvh};
+  auto point_box = [&](const Vec3& p) {
+    Aabb box = box_of({p});
+    box.pad(band);
+    return box;
+  };
 
   // Cloth vertices: the nearest cloth face on each side, the nearest face of each obstacle.
   const std::size_t per_vertex = 2 + num_obstacles;
   std::vector<std::optional<ProximityPair>> vertex_pairs(static_cast<std::size_t>(num_nodes_) * per_vertex);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-  for (int32_t i = 0; i < num_nodes_; ++i) {
-    if (!used[static_cast<std::size_t>(i)]) continue;
+  std::vector<double> nearest_obstacle(static_cast<std::size_t>(num_nodes_) * num_obstacles, band);  // per vertex and obstacle
+  auto cloth_face = [&](int32_t i, int32_t f) {
+    const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
+    const Vec3 p = cx(i), a = cx(t[0]), b = cx(t[1]), c = cx(t[2]);
+    const Vec3 w = closest_triangle_weights(p, a, b, c);
+    const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
+    const double dist = sep.norm();
+    if (dist >= band) return;
+    const Vec3 face_normal = unit_or_zero((b - a).cross(c - a));
+    // Only a vertex over the face, its border included (Bridson et al. 2002, section 7.2): a
+    // closest point that the border clamps lies in a flat sheet's own plane whenever the band
+    // reaches past the vertex's 2-ring, and pushing it would compress the sheet. Edge-edge
+    // pairs cover the rest.
+    if ((sep - sep.dot(face_normal) * face_normal).norm() > 1e-6 * band) return;
+    const Vec3 n = dist > 1e-9 * band ? Vec3(sep / dist) : face_normal;
+    if (n.squaredNorm() == 0) return;
+    auto& slot = vertex_pairs[static_cast<std::size_t>(i) * per_vertex + (n.dot(face_normal) >= 0 ? 0 : 1)];
+    if (slot && slot->distance <= dist) return;
+    ProximityPair pair;
+    set_cloth(pair, 0, i, 1.0);
+    for (int k = 0; k < 3; ++k) set_cloth(pair, k + 1, t[static_cast<std::size_t>(k)], -w[k]);
+    pair.normal = n;
+    pair.distance = dist;
+    slot = pair;
+  };
+  auto obstacle_face = [&](int32_t i, std::size_t o, int32_t f) {
+    const auto& ox = obstacle_x[o];
+    const auto& t = obstacles_[o].faces[static_cast<std::size_t>(f)];
     const Vec3 p = cx(i);
-    Aabb box = box_of({p});
-    box.pad(band);
-    auto* slots = &vertex_pairs[static_cast<std::size_t>(i) * per_vertex];
-    face_bvh.query(box, [&](int32_t f) {
-      const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
-      if (t[0] == i || t[1] == i || t[2] == i) return;
-      const Vec3 a = cx(t[0]), b = cx(t[1]), c = cx(t[2]);
-      const Vec3 w = closest_triangle_weights(p, a, b, c);
-      const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
-      const double dist = sep.norm();
-      if (dist >= band) return;
-      const Vec3 face_normal = unit_or_zero((b - a).cross(c - a));
-      // Only a vertex over the face, its border included (Bridson et al. 2002, section 7.2): a
-      // closest point that the border clamps lies in a flat sheet's own plane whenever the band
-      // reaches past the vertex's 2-ring, and pushing it would compress the sheet. Edge-edge
-      // pairs cover the rest.
-      if ((sep - sep.dot(face_normal) * face_normal).norm() > 1e-6 * band) return;
-      const Vec3 n = dist > 1e-9 * band ? Vec3(sep / dist) : face_normal;
-      if (n.squaredNorm() == 0) return;
-      auto& slot = slots[n.dot(face_normal) >= 0 ? 0 : 1];
-      if (slot && slot->distance <= dist) return;
-      ProximityPair pair;
-      set_cloth(pair, 0, i, 1.0);
-      for (int k = 0; k < 3; ++k) set_cloth(pair, k + 1, t[static_cast<std::size_t>(k)], -w[k]);
-      pair.normal = n;
-      pair.distance = dist;
-      slot = pair;
-    });
-    for (std::size_t o = 0; o < num_obstacles; ++o) {
-      const auto& ox = obstacle_x[o];
-      double best = band;
-      obstacle_face_bvh[o]->query(box, [&](int32_t f) {
-        const auto& t = obstacles_[o].faces[static_cast<std::size_t>(f)];
-        const Vec3 &a = ox[static_cast<std::size_t>(t[0])], &b = ox[static_cast<std::size_t>(t[1])], &c = ox[static_cast<std::size_t>(t[2])];
-        const Vec3 w = closest_triangle_weights(p, a, b, c);
-        const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
-        const double dist = sep.norm();
-        if (dist >= best) return;
-        const Vec3 outward = face_outward(obstacles_[o], ox, f);
-        if (outward.squaredNorm() == 0) return;
-        best = dist;
-        ProximityPair pair;
-        set_cloth(pair, 0, i, 1.0);
-        for (int k = 0; k < 3; ++k) set_obstacle(pair, k + 1, o, t[static_cast<std::size_t>(k)], -w[k]);
-        pair.normal = obstacle_direction(sep, outward, band);
-        pair.distance = pair.normal.dot(sep);
-        slots[2 + o] = pair;
-      });
-    }
-  }
+    const Vec3 &a = ox[static_cast<std::size_t>(t[0])], &b = ox[static_cast<std::size_t>(t[1])], &c = ox[static_cast<std::size_t>(t[2])];
+    const Vec3 w = closest_triangle_weights(p, a, b, c);
+    const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
+    const double dist = sep.norm();
+    double& best = nearest_obstacle[static_cast<std::size_t>(i) * num_obstacles + o];
+    if (dist >= best) return;
+    const Vec3 outward = face_outward(obstacles_[o], ox, f);
+    if (outward.squaredNorm() == 0) return;
+    best = dist;
+    ProximityPair pair;
+    set_cloth(pair, 0, i, 1.0);
+    for (int k = 0; k < 3; ++k) set_obstacle(pair, k + 1, o, t[static_cast<std::size_t>(k)], -w[k]);
+    pair.normal = obstacle_direction(sep, outward, band);
+    pair.distance = pair.normal.dot(sep);
+    vertex_pairs[static_cast<std::size_t>(i) * per_vertex + 2 + o] = pair;
+  };
+  vertex_face_candidates(trees, nullptr, threads, [&](int32_t i) { return point_box(cx(i)); }, cloth_face, obstacle_face);
 
   // Obstacle vertices: the nearest cloth face.
   std::vector<std::vector<std::optional<ProximityPair>>> obstacle_vertex_pairs(num_obstacles);
+  std::vector<std::vector<double>> nearest_cloth(num_obstacles);
+  std::vector<std::vector<std::optional<Vec3>>> outwards(num_obstacles);  // computed once a vertex has a cloth face within the band
+  std::vector<std::size_t> obstacle_vertices;
   for (std::size_t o = 0; o < num_obstacles; ++o) {
-    const auto& ox = obstacle_x[o];
-    const auto nv = static_cast<int64_t>(ox.size());
-    obstacle_vertex_pairs[o].resize(ox.size());
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-    for (int64_t i = 0; i < nv; ++i) {
-      const Vec3& p = ox[static_cast<std::size_t>(i)];
-      std::optional<Vec3> outward;  // computed once the vertex has a cloth face within the band
-      Aabb box = box_of({p});
-      box.pad(band);
-      double best = band;
-      face_bvh.query(box, [&](int32_t f) {
+    const std::size_t n = obstacle_x[o].size();
+    obstacle_vertices.push_back(n);
+    obstacle_vertex_pairs[o].resize(n);
+    nearest_cloth[o].assign(n, band);
+    outwards[o].resize(n);
+  }
+  obstacle_vertex_candidates(
+      trees, obstacle_vertices, nullptr, threads, [&](std::size_t o, int32_t i) { return point_box(obstacle_x[o][static_cast<std::size_t>(i)]); },
+      [&](std::size_t o, int32_t i, int32_t f) {
+        const auto iu = static_cast<std::size_t>(i);
+        const Vec3& p = obstacle_x[o][iu];
         const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
         const Vec3 a = cx(t[0]), b = cx(t[1]), c = cx(t[2]);
         const Vec3 w = closest_triangle_weights(p, a, b, c);
         const Vec3 sep = (w[0] * a + w[1] * b + w[2] * c) - p;
         const double dist = sep.norm();
-        if (dist >= best) return;
-        if (!outward) outward = outward_around(obstacles_[o], obstacle_adjacency_[o].vertex, ox, i);
+        if (dist >= nearest_cloth[o][iu]) return;
+        std::optional<Vec3>& outward = outwards[o][iu];
+        if (!outward) outward = outward_around(obstacles_[o], obstacle_adjacency_[o].vertex, obstacle_x[o], i);
         if (outward->squaredNorm() == 0) return;
-        best = dist;
+        nearest_cloth[o][iu] = dist;
         ProximityPair pair;
         for (int k = 0; k < 3; ++k) set_cloth(pair, k, t[static_cast<std::size_t>(k)], w[k]);
-        set_obstacle(pair, 3, o, static_cast<int32_t>(i), -1.0);
+        set_obstacle(pair, 3, o, i, -1.0);
         pair.normal = obstacle_direction(sep, *outward, band);
         pair.distance = pair.normal.dot(sep);
-        obstacle_vertex_pairs[o][static_cast<std::size_t>(i)] = pair;
+        obstacle_vertex_pairs[o][iu] = pair;
       });
-    }
-  }
 
-  // Edges: pairs whose closest points are inside both edges, each cloth pair once (from its
-  // earlier edge in the hierarchy's order). The cloth edge hierarchy descends together with
-  // each other hierarchy, from fixed subtrees in parallel; a cloth edge's pairs are listed
-  // (cloth pairs, then each obstacle's) by the one subtree that holds it.
+  // Edges: pairs whose closest points are inside both edges, each cloth pair once.
   auto interior = [](double s) { return s > 1e-6 && s < 1 - 1e-6; };
   std::vector<std::vector<ProximityPair>> edge_pairs(cloth_edges_.size());
   auto cloth_edge_pair = [&](int32_t ea, int32_t eb) {
     const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
     const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
-    if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return;
     const Vec3 a0 = cx(A[0]), a1 = cx(A[1]), b0 = cx(B[0]), b1 = cx(B[1]);
     const Vec2 su = closest_segment_params(a0, a1, b0, b1);
     if (!interior(su.x()) || !interior(su.y())) return;
@@ -225,7 +222,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     pair.distance = pair.normal.dot(sep);
     edge_pairs[static_cast<std::size_t>(ea)].push_back(pair);
   };
-  pairs_by_subtree(edge_bvh, obstacle_edge_bvh, band, kTraversalUnits, threads, cloth_edge_pair, obstacle_edge_pair);
+  edge_edge_candidates(trees, nullptr, band, threads, [](int32_t) { return Aabb(); }, cloth_edge_pair, obstacle_edge_pair);
 
   std::vector<ProximityPair> pairs;
   auto keep = [&](const ProximityPair& p) {

@@ -1,0 +1,145 @@
+// The candidate stage of collision handling, the broad phase of Bridson, Fedkiw and Anderson
+// 2002 (sections 7.2 and 7.4): the cloth and obstacle primitives whose boxes meet, handed to
+// the narrow phase of proximity detection (proximity.cpp) and of impact detection (collider.cpp)
+// alike. Pairs that share a cloth node are never candidates. A query primitive's candidates come
+// one after another, in the hierarchies' order; query primitives are taken in parallel, so a
+// caller writes only to the query primitive's own results, and what it finds does not depend on
+// the thread count.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <initializer_list>
+#include <vector>
+
+#include "core/bvh.hpp"
+
+namespace vdc {
+
+// Subtrees a cloth hierarchy is split into for a parallel descent with another hierarchy: fixed,
+// so that the pairs found, and their order, do not depend on the thread count.
+inline constexpr int kCandidateTraversalUnits = 64;
+
+// What one detection searches: the cloth's faces and edges (global node ids), the nodes its
+// faces use, hierarchies over the boxes of this detection, and each obstacle's.
+struct CandidateTrees {
+  const std::vector<std::array<int32_t, 3>>& cloth_faces;
+  const std::vector<std::array<int32_t, 2>>& cloth_edges;
+  const std::vector<char>& node_used;  // per cloth node: a face uses it
+  const Bvh& cloth_face_tree;
+  const Bvh& cloth_edge_tree;
+  const std::vector<const Bvh*>& obstacle_face_trees;
+  const std::vector<const Bvh*>& obstacle_edge_trees;
+};
+
+// The cloth primitives with a node that the last round of impact projection moved (Bridson et
+// al. 2002, section 7.4, iterated): only a pair with one of them can hold a new impact. A query
+// primitive with a moved node meets everything; the others meet only the moved cloth primitives
+// and no obstacle (which did not move).
+class MovedPrimitives {
+ public:
+  // `face_boxes` and `edge_boxes`: the boxes of the trees' cloth primitives in this round.
+  MovedPrimitives(const std::vector<char>& moved, const CandidateTrees& trees, const std::vector<Aabb>& face_boxes,
+                  const std::vector<Aabb>& edge_boxes);
+  bool any(std::initializer_list<int32_t> nodes) const {
+    for (const int32_t n : nodes)
+      if (moved_[static_cast<std::size_t>(n)]) return true;
+    return false;
+  }
+  // Calls f(face) for the moved cloth faces (edges) whose boxes meet `box`.
+  template <class F>
+  void faces_near(const Aabb& box, F&& f) const {
+    face_tree_.query(box, [&](int32_t k) { f(faces_[static_cast<std::size_t>(k)]); });
+  }
+  template <class F>
+  void edges_near(const Aabb& box, F&& f) const {
+    edge_tree_.query(box, [&](int32_t k) { f(edges_[static_cast<std::size_t>(k)]); });
+  }
+
+ private:
+  static std::vector<Aabb> boxes_of(const std::vector<int32_t>& items, const std::vector<Aabb>& boxes);
+  const std::vector<char>& moved_;
+  std::vector<int32_t> faces_, edges_;
+  Bvh face_tree_, edge_tree_;
+};
+
+// Vertex-face candidates: for every cloth node a face uses (in parallel), cloth_face(v, f) for
+// each cloth face not around it whose box meets vertex_box(v), then obstacle_face(v, o, f) for
+// each face of each obstacle o that meets it. With `moved`, a node that did not move meets only
+// the moved cloth faces.
+template <class VertexBox, class ClothFace, class ObstacleFace>
+void vertex_face_candidates(const CandidateTrees& t, const MovedPrimitives* moved, int threads, VertexBox&& vertex_box,
+                            ClothFace&& cloth_face, ObstacleFace&& obstacle_face) {
+  const auto num_nodes = static_cast<int32_t>(t.node_used.size());
+#pragma omp parallel for schedule(dynamic, 128) num_threads(threads)
+  for (int32_t v = 0; v < num_nodes; ++v) {
+    if (!t.node_used[static_cast<std::size_t>(v)]) continue;
+    const Aabb box = vertex_box(v);
+    auto face = [&](int32_t f) {
+      const auto& tri = t.cloth_faces[static_cast<std::size_t>(f)];
+      if (tri[0] != v && tri[1] != v && tri[2] != v) cloth_face(v, f);
+    };
+    const bool all = moved == nullptr || moved->any({v});
+    if (all) t.cloth_face_tree.query(box, face);
+    else moved->faces_near(box, face);
+    if (!all) continue;
+    for (std::size_t o = 0; o < t.obstacle_face_trees.size(); ++o)
+      t.obstacle_face_trees[o]->query(box, [&](int32_t f) { obstacle_face(v, o, f); });
+  }
+}
+
+// Obstacle vertex-cloth face candidates: obstacle by obstacle, its vertices in parallel,
+// cloth_face(o, v, f) for each cloth face whose box meets vertex_box(o, v); with `moved`, only
+// the moved cloth faces. `num_vertices[o]`: obstacle o's vertex count.
+template <class VertexBox, class ClothFace>
+void obstacle_vertex_candidates(const CandidateTrees& t, const std::vector<std::size_t>& num_vertices, const MovedPrimitives* moved,
+                                int threads, VertexBox&& vertex_box, ClothFace&& cloth_face) {
+  for (std::size_t o = 0; o < num_vertices.size(); ++o) {
+    const auto n = static_cast<int32_t>(num_vertices[o]);
+#pragma omp parallel for schedule(dynamic, 128) num_threads(threads)
+    for (int32_t v = 0; v < n; ++v) {
+      const Aabb box = vertex_box(o, v);
+      auto face = [&](int32_t f) { cloth_face(o, v, f); };
+      if (moved == nullptr) t.cloth_face_tree.query(box, face);
+      else moved->faces_near(box, face);
+    }
+  }
+}
+
+// Edge-edge candidates: cloth_pair(ea, eb) once for each pair of cloth edges without a shared
+// node whose boxes meet, listed under ea, and obstacle_pair(o, ea, eb) for each cloth edge ea and
+// edge eb of obstacle o whose boxes meet. Without `moved`, the cloth edge hierarchy descends
+// together with itself and each obstacle's from fixed subtrees in parallel, boxes grown by `pad`,
+// each cloth pair met from its earlier edge in leaf order and a cloth edge's pairs listed by the
+// one subtree that holds it. With `moved` (and boxes already padded), every cloth edge queries
+// with edge_box(e), each pair from its lower-numbered edge, and only edges with a moved node meet
+// the obstacles.
+template <class EdgeBox, class ClothPair, class ObstaclePair>
+void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved, double pad, int threads, EdgeBox&& edge_box,
+                          ClothPair&& cloth_pair, ObstaclePair&& obstacle_pair) {
+  auto cloth = [&](int32_t ea, int32_t eb) {
+    const auto& a = t.cloth_edges[static_cast<std::size_t>(ea)];
+    const auto& b = t.cloth_edges[static_cast<std::size_t>(eb)];
+    if (a[0] != b[0] && a[0] != b[1] && a[1] != b[0] && a[1] != b[1]) cloth_pair(ea, eb);
+  };
+  if (moved == nullptr) {
+    pairs_by_subtree(t.cloth_edge_tree, t.obstacle_edge_trees, pad, kCandidateTraversalUnits, threads, cloth, obstacle_pair);
+    return;
+  }
+  const auto num_edges = static_cast<int32_t>(t.cloth_edges.size());
+#pragma omp parallel for schedule(dynamic, 128) num_threads(threads)
+  for (int32_t ea = 0; ea < num_edges; ++ea) {
+    const auto& a = t.cloth_edges[static_cast<std::size_t>(ea)];
+    const Aabb box = edge_box(ea);
+    auto later = [&](int32_t eb) {
+      if (eb > ea) cloth(ea, eb);
+    };
+    const bool all = moved->any({a[0], a[1]});
+    if (all) t.cloth_edge_tree.query(box, later);
+    else moved->edges_near(box, later);
+    if (!all) continue;
+    for (std::size_t o = 0; o < t.obstacle_edge_trees.size(); ++o)
+      t.obstacle_edge_trees[o]->query(box, [&](int32_t eo) { obstacle_pair(o, ea, eo); });
+  }
+}
+
+}  // namespace vdc

@@ -1,0 +1,169 @@
+// The candidate stage: on a crumpled sheet and an obstacle beside it, every query finds exactly
+// the primitives whose boxes meet its box (counted against all pairs, by hand), never a pair that
+// shares a node, each cloth edge pair once; after a round that moved some nodes, exactly the
+// pairs with a moved node.
+#include "collision/candidates.hpp"
+
+#include <gtest/gtest.h>
+
+#include <mutex>
+#include <random>
+#include <set>
+#include <tuple>
+
+namespace vdc {
+namespace {
+
+class CandidatesTest : public ::testing::Test {
+ protected:
+  // A 7 x 7 grid of nodes, its heights random, as 72 faces and their edges; a two-face obstacle
+  // through it; every primitive's box its points' box padded by 0.05.
+  void SetUp() override {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> height(-0.15, 0.15);
+    constexpr int kSide = 7;
+    for (int j = 0; j < kSide; ++j)
+      for (int i = 0; i < kSide; ++i) x_.emplace_back(0.1 * i, height(rng), 0.1 * j);
+    auto id = [&](int i, int j) { return static_cast<int32_t>(j * kSide + i); };
+    for (int j = 0; j + 1 < kSide; ++j)
+      for (int i = 0; i + 1 < kSide; ++i) {
+        faces_.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        faces_.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    std::set<std::array<int32_t, 2>> edges;
+    for (const auto& f : faces_)
+      for (int k = 0; k < 3; ++k) edges.insert({std::min(f[k], f[(k + 1) % 3]), std::max(f[k], f[(k + 1) % 3])});
+    edges_.assign(edges.begin(), edges.end());
+    used_.assign(x_.size(), 1);
+    obstacle_x_ = {{0.3, -0.18, 0.3}, {0.3, 0.18, 0.3}, {0.3, 0.18, -0.1}, {0.3, -0.18, -0.1}};
+    obstacle_faces_ = {{0, 1, 2}, {0, 2, 3}};
+    obstacle_edges_ = {{0, 1}, {1, 2}, {0, 2}, {2, 3}, {0, 3}};
+    for (const auto& f : faces_) face_boxes_.push_back(box({x_[f[0]], x_[f[1]], x_[f[2]]}));
+    for (const auto& e : edges_) edge_boxes_.push_back(box({x_[e[0]], x_[e[1]]}));
+    for (const auto& f : obstacle_faces_) obstacle_face_boxes_.push_back(box({obstacle_x_[f[0]], obstacle_x_[f[1]], obstacle_x_[f[2]]}));
+    for (const auto& e : obstacle_edges_) obstacle_edge_boxes_.push_back(box({obstacle_x_[e[0]], obstacle_x_[e[1]]}));
+    face_tree_ = std::make_unique<Bvh>(face_boxes_);
+    edge_tree_ = std::make_unique<Bvh>(edge_boxes_);
+    obstacle_face_tree_ = std::make_unique<Bvh>(obstacle_face_boxes_);
+    obstacle_edge_tree_ = std::make_unique<Bvh>(obstacle_edge_boxes_);
+    obstacle_face_trees_ = {obstacle_face_tree_.get()};
+    obstacle_edge_trees_ = {obstacle_edge_tree_.get()};
+  }
+  static Aabb box(std::initializer_list<Vec3> points) {
+    Aabb b;
+    for (const Vec3& p : points) b.grow(p);
+    b.pad(0.05);
+    return b;
+  }
+  CandidateTrees trees() const { return {faces_, edges_, used_, *face_tree_, *edge_tree_, obstacle_face_trees_, obstacle_edge_trees_}; }
+  static bool shares(const std::array<int32_t, 3>& f, int32_t v) { return f[0] == v || f[1] == v || f[2] == v; }
+  static bool shares(const std::array<int32_t, 2>& a, const std::array<int32_t, 2>& b) {
+    return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1];
+  }
+
+  using Found = std::multiset<std::tuple<int, int, int>>;  // (obstacle or -1, query, candidate)
+  // What each query of the stage finds, with `moved` (or none) and `threads`.
+  Found vertex_faces(const MovedPrimitives* moved, int threads) const {
+    Found found;
+    std::mutex lock;
+    vertex_face_candidates(
+        trees(), moved, threads, [&](int32_t v) { return box({x_[static_cast<std::size_t>(v)]}); },
+        [&](int32_t v, int32_t f) {
+          std::lock_guard<std::mutex> hold(lock);
+          found.insert({-1, v, f});
+        },
+        [&](int32_t v, std::size_t o, int32_t f) {
+          std::lock_guard<std::mutex> hold(lock);
+          found.insert({static_cast<int>(o), v, f});
+        });
+    return found;
+  }
+  Found obstacle_vertices(const MovedPrimitives* moved, int threads) const {
+    Found found;
+    std::mutex lock;
+    obstacle_vertex_candidates(
+        trees(), {obstacle_x_.size()}, moved, threads, [&](std::size_t, int32_t v) { return box({obstacle_x_[static_cast<std::size_t>(v)]}); },
+        [&](std::size_t o, int32_t v, int32_t f) {
+          std::lock_guard<std::mutex> hold(lock);
+          found.insert({static_cast<int>(o), v, f});
+        });
+    return found;
+  }
+  Found edge_pairs(const MovedPrimitives* moved, int threads) const {
+    Found found;
+    std::mutex lock;
+    edge_edge_candidates(
+        trees(), moved, 0.0, threads, [&](int32_t e) { return edge_boxes_[static_cast<std::size_t>(e)]; },
+        [&](int32_t a, int32_t b) {
+          std::lock_guard<std::mutex> hold(lock);
+          found.insert({-1, std::min(a, b), std::max(a, b)});
+        },
+        [&](std::size_t o, int32_t a, int32_t b) {
+          std::lock_guard<std::mutex> hold(lock);
+          found.insert({static_cast<int>(o), a, b});
+        });
+    return found;
+  }
+
+  std::vector<Vec3> x_, obstacle_x_;
+  std::vector<std::array<int32_t, 3>> faces_, obstacle_faces_;
+  std::vector<std::array<int32_t, 2>> edges_, obstacle_edges_;
+  std::vector<char> used_;
+  std::vector<Aabb> face_boxes_, edge_boxes_, obstacle_face_boxes_, obstacle_edge_boxes_;
+  std::unique_ptr<Bvh> face_tree_, edge_tree_, obstacle_face_tree_, obstacle_edge_tree_;
+  std::vector<const Bvh*> obstacle_face_trees_, obstacle_edge_trees_;
+};
+
+TEST_F(CandidatesTest, EveryQueryFindsExactlyTheBoxesItMeets) {
+  Found vf, ov, ee;
+  for (int32_t v = 0; v < static_cast<int32_t>(x_.size()); ++v) {
+    const Aabb b = box({x_[static_cast<std::size_t>(v)]});
+    for (int32_t f = 0; f < static_cast<int32_t>(faces_.size()); ++f)
+      if (!shares(faces_[static_cast<std::size_t>(f)], v) && b.overlaps(face_boxes_[static_cast<std::size_t>(f)])) vf.insert({-1, v, f});
+    for (int32_t f = 0; f < static_cast<int32_t>(obstacle_faces_.size()); ++f)
+      if (b.overlaps(obstacle_face_boxes_[static_cast<std::size_t>(f)])) vf.insert({0, v, f});
+  }
+  for (int32_t v = 0; v < static_cast<int32_t>(obstacle_x_.size()); ++v)
+    for (int32_t f = 0; f < static_cast<int32_t>(faces_.size()); ++f)
+      if (box({obstacle_x_[static_cast<std::size_t>(v)]}).overlaps(face_boxes_[static_cast<std::size_t>(f)])) ov.insert({0, v, f});
+  for (int32_t a = 0; a < static_cast<int32_t>(edges_.size()); ++a) {
+    const Aabb& ba = edge_boxes_[static_cast<std::size_t>(a)];
+    for (int32_t b = a + 1; b < static_cast<int32_t>(edges_.size()); ++b)
+      if (!shares(edges_[static_cast<std::size_t>(a)], edges_[static_cast<std::size_t>(b)]) && ba.overlaps(edge_boxes_[static_cast<std::size_t>(b)]))
+        ee.insert({-1, a, b});
+    for (int32_t b = 0; b < static_cast<int32_t>(obstacle_edges_.size()); ++b)
+      if (ba.overlaps(obstacle_edge_boxes_[static_cast<std::size_t>(b)])) ee.insert({0, a, b});
+  }
+  // The scene is crumpled enough that each kind has candidates, and fewer than all pairs.
+  EXPECT_GT(vf.size(), 100u);
+  EXPECT_GT(ov.size(), 0u);
+  EXPECT_GT(ee.size(), 100u);
+  EXPECT_LT(ee.size(), edges_.size() * edges_.size() / 4);
+  for (const int threads : {1, 3}) {
+    EXPECT_EQ(vertex_faces(nullptr, threads), vf) << threads;
+    EXPECT_EQ(obstacle_vertices(nullptr, threads), ov) << threads;
+    EXPECT_EQ(edge_pairs(nullptr, threads), ee) << threads;  // a multiset: each pair once
+  }
+
+  // Nodes 8, 9 and 30 moved: what remains has a moved node, or is an obstacle met by a moved one.
+  std::vector<char> moved(x_.size(), 0);
+  for (const int n : {8, 9, 30}) moved[static_cast<std::size_t>(n)] = 1;
+  const MovedPrimitives only_moved(moved, trees(), face_boxes_, edge_boxes_);
+  auto moved_face = [&](int f) { return moved[faces_[f][0]] || moved[faces_[f][1]] || moved[faces_[f][2]]; };
+  auto moved_edge = [&](int e) { return moved[edges_[e][0]] || moved[edges_[e][1]]; };
+  Found vf_moved, ov_moved, ee_moved;
+  for (const auto& [o, v, f] : vf)
+    if (moved[v] || (o < 0 && moved_face(f))) vf_moved.insert({o, v, f});
+  for (const auto& [o, v, f] : ov)
+    if (moved_face(f)) ov_moved.insert({o, v, f});
+  for (const auto& [o, a, b] : ee)
+    if (moved_edge(a) || (o < 0 && moved_edge(b))) ee_moved.insert({o, a, b});
+  EXPECT_LT(vf_moved.size(), vf.size());
+  EXPECT_GT(vf_moved.size(), 0u);
+  EXPECT_EQ(vertex_faces(&only_moved, 2), vf_moved);
+  EXPECT_EQ(obstacle_vertices(&only_moved, 2), ov_moved);
+  EXPECT_EQ(edge_pairs(&only_moved, 2), ee_moved);
+}
+
+}  // namespace
+}  // namespace vdc
