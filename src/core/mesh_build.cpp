@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <unordered_map>
 #include <string>
 
 namespace vdc {
@@ -63,7 +64,9 @@ Mesh build_mesh(const MeshSource& src) {
     first_face_of_node.push_back(-1);
     source_of.push_back(static_cast<int32_t>(i));
   }
-  std::map<std::pair<int32_t, int32_t>, VertId> vert_of;
+  // The vert of each (position, pattern position) pair of the source, made at its first corner.
+  std::unordered_map<uint64_t, VertId> vert_of;
+  vert_of.reserve(src.uvs.size());
   for (std::size_t fi = 0; fi < src.faces.size(); ++fi) {
     const auto& f = src.faces[fi];
     const auto face_index = static_cast<int32_t>(fi);
@@ -84,7 +87,7 @@ Mesh build_mesh(const MeshSource& src) {
     std::array<VertId, 3> vs;
     for (int k = 0; k < 3; ++k) {
       const Corner& c = f[static_cast<std::size_t>(k)];
-      auto key = std::make_pair(c.node, c.uv);
+      const uint64_t key = (static_cast<uint64_t>(static_cast<uint32_t>(c.node)) << 32) | static_cast<uint32_t>(c.uv);
       auto it = vert_of.find(key);
       if (it == vert_of.end()) it = vert_of.emplace(key, mesh.add_vert(node_of[static_cast<std::size_t>(c.node)], src.uvs[static_cast<std::size_t>(c.uv)])).first;
       vs[static_cast<std::size_t>(k)] = it->second;
