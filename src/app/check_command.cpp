@@ -1,10 +1,13 @@
 #include "app/check_command.hpp"
 
+#include "app/run_frames.hpp"
+
 #include <filesystem>
 #include <fstream>
 #include <map>
 
 #include "app/cli.hpp"
+#include "app/run_frames.hpp"
 #include "collision/intersection.hpp"
 #include "core/error.hpp"
 #include "io/obj.hpp"
@@ -71,39 +74,42 @@ CheckSummary check_run(const std::string& run, int every, std::ostream& out) {
   const std::string csv_path = run + "/check.csv", status_path = run + "/check_status.txt";
   std::error_code ec;
   fs::remove(status_path, ec);
-  std::ofstream csv(csv_path + ".partial");
-  if (!csv) throw OutputError(csv_path + ".partial", "cannot write");
+  PartialTable table(csv_path);
+  std::ofstream& csv = table.stream();
   csv << "frame,mesh,other,face_pairs\n";
   CheckSummary summary;
-  int index = 0;
-  for (const auto& [frame, files] : frames) {
-    if (index++ % every != 0) continue;
-    std::map<std::string, TriangleSoup> meshes;
-    for (const auto& [key, path] : files) meshes.emplace(key, read_soup(path));
-    bool bad = false;
-    auto report = [&, frame = frame](const std::string& a, const std::string& b, int pairs) {
-      if (pairs == 0) return;
-      bad = true;
-      csv << frame << "," << a << "," << b << "," << pairs << "\n";
-      out << "vdcloth check: frame " << frame << ": " << a << (a == b ? " crosses itself" : " crosses " + b) << " (" << pairs
-          << " face pairs)\n";
-    };
-    for (auto a = meshes.begin(); a != meshes.end(); ++a) {
-      if (a->first.rfind("cloth_", 0) != 0) continue;
-      report(a->first, a->first, count_self_intersections(a->second.faces, a->second.positions));
-      for (auto b = meshes.begin(); b != meshes.end(); ++b) {
-        // Each garment pair once (from its first garment); every obstacle from each garment.
-        const bool cloth_b = b->first.rfind("cloth_", 0) == 0;
-        if (b == a || (cloth_b && b->first < a->first)) continue;
-        report(a->first, b->first, count_intersections_between(a->second.faces, a->second.positions, b->second.faces, b->second.positions));
+  try {
+    int index = 0;
+    for (const auto& [frame, files] : frames) {
+      if (index++ % every != 0) continue;
+      std::map<std::string, TriangleSoup> meshes;
+      for (const auto& [key, path] : files) meshes.emplace(key, read_soup(path));
+      bool bad = false;
+      auto report = [&, frame = frame](const std::string& a, const std::string& b, int pairs) {
+        if (pairs == 0) return;
+        bad = true;
+        csv << frame << "," << a << "," << b << "," << pairs << "\n";
+        out << "vdcloth check: frame " << frame << ": " << a << (a == b ? " crosses itself" : " crosses " + b) << " (" << pairs
+            << " face pairs)\n";
+      };
+      for (auto a = meshes.begin(); a != meshes.end(); ++a) {
+        if (a->first.rfind("cloth_", 0) != 0) continue;
+        report(a->first, a->first, count_self_intersections(a->second.faces, a->second.positions));
+        for (auto b = meshes.begin(); b != meshes.end(); ++b) {
+          // Each garment pair once (from its first garment); every obstacle from each garment.
+          const bool cloth_b = b->first.rfind("cloth_", 0) == 0;
+          if (b == a || (cloth_b && b->first < a->first)) continue;
+          report(a->first, b->first, count_intersections_between(a->second.faces, a->second.positions, b->second.faces, b->second.positions));
+        }
       }
+      ++summary.frames_checked;
+      summary.frames_with_crossings += bad;
     }
-    ++summary.frames_checked;
-    summary.frames_with_crossings += bad;
+  } catch (const std::exception&) {  // a mesh that cannot be read: no table left behind
+    table.discard();
+    throw;
   }
-  csv.close();
-  fs::rename(csv_path + ".partial", csv_path, ec);
-  if (ec) throw OutputError(csv_path, "cannot write: " + ec.message());
+  table.finish();
   std::ofstream status(status_path);
   status << summary.frames_checked << " " << summary.frames_with_crossings << " " << every << "\n";
   if (!status) throw OutputError(status_path, "cannot write");

@@ -211,19 +211,6 @@ std::string verdict_line(const ShotFidelity& s) {
   return o.str();
 }
 
-// Creates `dir`; returns the directories it had to make, deepest first.
-std::vector<fs::path> create_output_directory(const std::string& dir) {
-  std::vector<fs::path> made;
-  std::error_code ec;
-  for (fs::path p = fs::path(dir).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
-    made.push_back(p);
-    if (p == p.parent_path()) break;
-  }
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
-  return made;
-}
-
 }  // namespace
 
 int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {

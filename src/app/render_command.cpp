@@ -75,6 +75,49 @@ std::string numbered(const std::string& dir, const std::string& stem, int frame,
   return s.str();
 }
 
+// Draws the frames `to_draw` of the run (beside those of the compared run) into r.out, listing
+// each picture in `pictures` as it is written, and the comparison's table in `csv`.
+void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, FrameFiles>& frames, const std::map<int, FrameFiles>& other,
+                 const std::vector<int>& to_draw, std::optional<PartialTable>& csv, std::vector<std::string>& pictures, std::ostream& out) {
+  if (!r.compare.empty()) {
+    csv.emplace(r.out + "/compare.csv");
+    csv->stream() << "frame,time,cloth_pixels_a,cloth_pixels_b,cloth_iou,mean_abs_diff\n";
+  }
+  int drawn = 0, index = 0;
+  double iou_sum = 0, iou_min = 1, diff_sum = 0;
+  for (const int frame : to_draw) {
+    if (index++ % r.every != 0) continue;
+    const double time = frame * scene.frame_time;
+    const Camera camera = scene.camera->at(time);
+    const DrawnFrame a = draw_frame(camera, frames.at(frame), r.scale);
+    std::string written;
+    if (r.compare.empty()) {
+      written = numbered(r.out, "frame", frame, ".png");
+      pictures.push_back(written);
+      if (!write_png(a.pixels.image, written)) throw OutputError(written, "cannot write");
+    } else {
+      const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale);
+      const RenderComparison c = compare_renders(a.pixels, a.cloth, b.pixels, b.cloth);
+      csv->stream() << frame << "," << time << "," << c.cloth_pixels_a << "," << c.cloth_pixels_b << "," << std::setprecision(4) << c.cloth_iou
+                    << "," << c.mean_abs_diff << "\n";
+      iou_sum += c.cloth_iou;
+      iou_min = std::min(iou_min, c.cloth_iou);
+      diff_sum += c.mean_abs_diff;
+      written = numbered(r.out, "compare", frame, ".png");
+      pictures.push_back(written);
+      if (!write_png(side_by_side(a.pixels.image, b.pixels.image), written)) throw OutputError(written, "cannot write");
+    }
+    ++drawn;
+    out << "vdcloth render: frame " << frame << " -> " << written << "\n" << std::flush;
+  }
+  out << "vdcloth render: " << drawn << " frame(s) in " << r.out;
+  if (!r.compare.empty())
+    out << "; cloth silhouette overlap mean " << std::fixed << std::setprecision(3) << iou_sum / drawn << ", min " << iou_min
+        << "; mean pixel difference on cloth " << std::setprecision(1) << diff_sum / drawn << " of 255";
+  out << "\n";
+  if (csv) csv->finish();
+}
+
 }  // namespace
 
 int render_command(const std::vector<std::string>& args, std::ostream& out) {
@@ -95,46 +138,19 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
     to_draw = frames_in_common({&frames, &other});
     if (to_draw.empty()) throw InputError(r.compare, "", "no frame in common with " + r.run);
   }
-  std::error_code ec;
-  fs::create_directories(r.out, ec);
-  if (ec) throw InputError(r.out, "", "cannot create output directory: " + ec.message());
-
+  // A frame that cannot be read stops the command with what it drew taken back: nothing written.
+  const std::vector<fs::path> made = create_output_directory(r.out);
+  std::vector<std::string> pictures;
   std::optional<PartialTable> csv;
-  if (!r.compare.empty()) {
-    csv.emplace(r.out + "/compare.csv");
-    csv->stream() << "frame,time,cloth_pixels_a,cloth_pixels_b,cloth_iou,mean_abs_diff\n";
+  try {
+    draw_frames(r, scene, frames, other, to_draw, csv, pictures, out);
+  } catch (const std::exception&) {
+    if (csv) csv->discard();
+    std::error_code ec;
+    for (const std::string& p : pictures) fs::remove(p, ec);
+    for (const fs::path& dir : made) fs::remove(dir, ec);  // only if empty
+    throw;
   }
-  int drawn = 0, index = 0;
-  double iou_sum = 0, iou_min = 1, diff_sum = 0;
-  for (const int frame : to_draw) {
-    if (index++ % r.every != 0) continue;
-    const double time = frame * scene.frame_time;
-    const Camera camera = scene.camera->at(time);
-    const DrawnFrame a = draw_frame(camera, frames.at(frame), r.scale);
-    std::string written;
-    if (r.compare.empty()) {
-      written = numbered(r.out, "frame", frame, ".png");
-      if (!write_png(a.pixels.image, written)) throw OutputError(written, "cannot write");
-    } else {
-      const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale);
-      const RenderComparison c = compare_renders(a.pixels, a.cloth, b.pixels, b.cloth);
-      csv->stream() << frame << "," << time << "," << c.cloth_pixels_a << "," << c.cloth_pixels_b << "," << std::setprecision(4) << c.cloth_iou
-                    << "," << c.mean_abs_diff << "\n";
-      iou_sum += c.cloth_iou;
-      iou_min = std::min(iou_min, c.cloth_iou);
-      diff_sum += c.mean_abs_diff;
-      written = numbered(r.out, "compare", frame, ".png");
-      if (!write_png(side_by_side(a.pixels.image, b.pixels.image), written)) throw OutputError(written, "cannot write");
-    }
-    ++drawn;
-    out << "vdcloth render: frame " << frame << " -> " << written << "\n" << std::flush;
-  }
-  out << "vdcloth render: " << drawn << " frame(s) in " << r.out;
-  if (!r.compare.empty())
-    out << "; cloth silhouette overlap mean " << std::fixed << std::setprecision(3) << iou_sum / drawn << ", min " << iou_min
-        << "; mean pixel difference on cloth " << std::setprecision(1) << diff_sum / drawn << " of 255";
-  out << "\n";
-  if (csv) csv->finish();
   return kExitOk;
 }
 

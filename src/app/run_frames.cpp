@@ -48,6 +48,18 @@ std::vector<int> frames_in_common(const std::vector<const std::map<int, FrameFil
   return common;
 }
 
+std::vector<fs::path> create_output_directory(const std::string& dir) {
+  std::vector<fs::path> made;
+  std::error_code ec;
+  for (fs::path p = fs::path(dir).lexically_normal(); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    made.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir, "", "cannot create output directory: " + ec.message());
+  return made;
+}
+
 PartialTable::PartialTable(std::string path) : path_(std::move(path)) {
   std::error_code ec;
   fs::remove(path_, ec);

@@ -1,7 +1,9 @@
 // A run's written frames as `vdcloth render` and `vdcloth fidelity` draw them: the frames
 // several runs have in common, one frame's meshes drawn through a camera with cloth told from
-// bodies, and tables written under a temporary name until complete.
+// bodies; and what these commands and `vdcloth check` write: output directories they can take
+// back, tables written under a temporary name until complete.
 #pragma once
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
@@ -25,6 +27,10 @@ DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scal
 
 // The frames every one of `runs` has meshes for, in increasing order.
 std::vector<int> frames_in_common(const std::vector<const std::map<int, FrameFiles>*>& runs);
+
+// Creates `dir` (and its parents); returns the directories it had to make, deepest first, for
+// a command that fails part-way to remove. Throws InputError when it cannot.
+std::vector<std::filesystem::path> create_output_directory(const std::string& dir);
 
 // A table written to PATH.partial and renamed to PATH by finish(), so that a command stopped
 // part-way leaves no table that looks complete. Opening removes an earlier PATH; throws

@@ -27,12 +27,21 @@ namespace fs = std::filesystem;
 const fs::path kCorpus = fs::path(VDCLOTH_SOURCE_DIR) / "tests" / "corpus";
 
 struct Outcome {
-  int status = -1;  // exit status, or 128 + the signal that ended the program
-  std::string output;  // standard output and standard error
+  int status = -1;     // exit status, or 128 + the signal that ended the program
+  std::string output;  // standard output (progress) and standard error (messages), in that order
+  std::string errors;  // standard error alone
 };
 
-// Runs the vdcloth program with `args` in directory `cwd`; its output goes to `log`.
+std::string contents(const fs::path& path) {
+  std::ostringstream text;
+  text << std::ifstream(path).rdbuf();
+  return text.str();
+}
+
+// Runs the vdcloth program with `args` in directory `cwd`; its output goes to `log` (standard
+// output) and `log`.err (standard error).
 Outcome run_vdcloth(const std::vector<std::string>& args, const fs::path& cwd, const fs::path& log) {
+  const fs::path error_log = log.string() + ".err";
   std::vector<std::string> argv_strings = {VDCLOTH_BINARY};
   argv_strings.insert(argv_strings.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -41,7 +50,8 @@ Outcome run_vdcloth(const std::vector<std::string>& args, const fs::path& cwd, c
   const pid_t pid = ::fork();
   if (pid == 0) {
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd < 0 || ::chdir(cwd.c_str()) != 0 || ::dup2(fd, 1) < 0 || ::dup2(fd, 2) < 0) ::_exit(127);
+    const int error_fd = ::open(error_log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0 || error_fd < 0 || ::chdir(cwd.c_str()) != 0 || ::dup2(fd, 1) < 0 || ::dup2(error_fd, 2) < 0) ::_exit(127);
     ::execv(argv[0], argv.data());
     ::_exit(127);
   }
@@ -49,9 +59,8 @@ Outcome run_vdcloth(const std::vector<std::string>& args, const fs::path& cwd, c
   int status = 0;
   if (pid < 0 || ::waitpid(pid, &status, 0) != pid) return outcome;
   outcome.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  std::ostringstream text;
-  text << std::ifstream(log).rdbuf();
-  outcome.output = text.str();
+  outcome.errors = contents(error_log);
+  outcome.output = contents(log) + outcome.errors;
   return outcome;
 }
 
@@ -127,10 +136,10 @@ TEST_P(CorpusCase, ExitsAsExpectedNamingTheProblem) {
   for (const auto& word : spec.at("words")) EXPECT_NE(got.output.find(word.get<std::string>()), std::string::npos) << "no '" << word << "' in\n" << got.output;
   if (got.status == 2) {
     EXPECT_EQ(tree(root_ / "corpus"), before) << "a refused input wrote or removed files";
-    if (spec.value("one_line", true)) {
-      EXPECT_EQ(std::count(got.output.begin(), got.output.end(), '\n'), 1) << got.output;
-      EXPECT_LE(got.output.size(), 600u) << "a message too long to read";
-      EXPECT_EQ(got.output.rfind("vdcloth: ", 0), 0u) << got.output;
+    if (spec.value("one_line", true)) {  // progress before it may go to standard output
+      EXPECT_EQ(std::count(got.errors.begin(), got.errors.end(), '\n'), 1) << got.errors;
+      EXPECT_LE(got.errors.size(), 600u) << "a message too long to read";
+      EXPECT_EQ(got.errors.rfind("vdcloth: ", 0), 0u) << got.errors;
     }
   }
 }
