@@ -1,17 +1,21 @@
 #include "scene/scene.hpp"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <optional>
 #include <filesystem>
 #include <limits>
 #include <set>
 #include <stdexcept>
 
+#include "core/bvh.hpp"
 #include "core/mesh_build.hpp"
 #include "core/track.hpp"
 #include "io/json_reader.hpp"
 #include "io/obj.hpp"
 #include "physics/cloth_model.hpp"
+#include "scene/body.hpp"
 #include "scene/bvh_motion.hpp"
 #include "scene/garments.hpp"
 #include "scene/material_file.hpp"
@@ -37,6 +41,23 @@ std::string resolve(const JsonValue& j, const std::string& scene_path) {
   }
   if (!fs::is_regular_file(status)) j.fail("not a regular file: " + shortened(p.string()));
   return p.string();
+}
+
+// A character's skeleton must be of a person's size once scaled: a capture in other units (CMU's
+// captures in inches, others in centimetres) would otherwise make a figure metres or millimetres
+// tall, and the garments around it meaningless. The size is the largest extent of its joints in
+// the rest pose; `place` is what the error names (the scale, or the motion without one).
+void check_figure_size(const Motion& motion, double scale, const JsonValue& place) {
+  constexpr double kShortest = 0.5, kTallest = 3.0, kTypical = 1.7;  // m
+  Aabb box;
+  for (const auto& joint : motion.world(Body::rest_pose(motion.skeleton))) box.grow(Vec3(joint.translation()));
+  const double size = (box.hi - box.lo).maxCoeff();
+  if (size >= kShortest && size <= kTallest) return;
+  std::ostringstream problem;
+  problem << "the figure is " << std::setprecision(3) << size << " m tall with scale " << scale
+          << " (its skeleton's extent in the rest pose), not 0.5 to 3 m";
+  if (size > 0) problem << ": scale " << std::setprecision(3) << scale * kTypical / size << " would make it 1.7 m";
+  place.fail(problem.str());
 }
 
 // Runs a loader of a referenced file; its errors keep their own file and line and gain the key path.
@@ -242,6 +263,7 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
     if (motion.frames.empty()) file.fail("the motion has no frames");
     const double scale = c->positive_or("scale", 1.0);
     scale_lengths(motion, scale);
+    check_figure_size(motion, scale, c->has("scale") ? c->at("scale") : file);
     std::optional<MeshSource> skin;
     if (auto s = c->find("skin")) {
       const std::string skin_path = resolve(*s, scene_path);
