@@ -60,6 +60,13 @@ void check_figure_size(const Motion& motion, double scale, const JsonValue& plac
   place.fail(problem.str());
 }
 
+// How far a capture's root stands, across the floor, from the origin at its first frame: the
+// shift that brings the figure to where the scene's transform places it (its height kept).
+Vec3 recentering(const Motion& motion) {
+  const Vec3 root = motion.world(motion.frame_pose(0)).front().translation();
+  return Vec3(root.x(), 0.0, root.z());
+}
+
 // Runs a loader of a referenced file; its errors keep their own file and line and gain the key path.
 template <class F>
 auto with_key(const JsonValue& j, F&& load) {
@@ -256,7 +263,7 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
   if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
   if (auto c = j.find("character")) {
     // The character places itself (its transform applies to the skinned body every frame).
-    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed"});
+    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter"});
     const JsonValue file = c->at("motion");
     const std::string path = resolve(file, scene_path);
     Motion motion = with_key(file, [&] { return read_bvh(path); });
@@ -272,6 +279,12 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
         return read_obj_source(skin_path, false);
       });
       for (Vec3& x : skin->positions) x *= scale;
+    }
+    if (c->boolean_or("recenter", true)) {
+      const Vec3 shift = recentering(motion);
+      motion.skeleton.joints.front().offset -= shift;
+      if (skin)
+        for (Vec3& x : skin->positions) x -= shift;
     }
     BodyParams body;
     body.build = c->positive_or("build", body.build);

@@ -111,5 +111,40 @@ TEST(Character, SkinFromAFileIsSkinnedLikeTheProceduralBody) {
   }
 }
 
+
+// A capture whose root starts away from the origin is brought over it (its height kept): the
+// dance moved 1.5 m along x and -2 m along z comes back to the dance; with "recenter": false it
+// stays where the capture has it.
+TEST(Character, ACaptureStartsWhereTheSceneStandsItUnlessAskedNotTo) {
+  const std::string motion = std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh";
+  Scene own = load_scene(write_scene(R"({"name": "d", "character": {"motion": ")" + motion + R"(", "resolution": 0.05}})"));
+  const fs::path dir = fs::path(own.path).parent_path();
+  Motion away = read_bvh(motion);
+  const Joint& root = away.skeleton.joints.front();
+  for (auto& frame : away.frames)
+    for (std::size_t c = 0; c < root.channels.size(); ++c) {
+      double& value = frame[static_cast<std::size_t>(root.first_channel) + c];
+      if (root.channels[c] == Channel::XPosition) value += 1.5;
+      if (root.channels[c] == Channel::ZPosition) value -= 2.0;
+    }
+  ASSERT_TRUE(write_bvh(away, (dir / "away.bvh").string()));
+  Scene recentered = load_scene(write_scene(R"({"name": "d", "character": {"motion": "away.bvh", "resolution": 0.05}})"));
+  Scene kept = load_scene(write_scene(R"({"name": "d", "character": {"motion": "away.bvh", "resolution": 0.05, "recenter": false}})"));
+  fs::remove_all(dir);
+  for (double t : {0.0, 2.0, 5.0}) {
+    const std::vector<Vec3> a = own.obstacles[0].positions_at(t), b = recentered.obstacles[0].positions_at(t),
+                            c = kept.obstacles[0].positions_at(t);
+    ASSERT_EQ(a.size(), b.size());
+    ASSERT_EQ(a.size(), c.size());
+    double back = 0, away_by = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      back = std::max(back, (b[i] - a[i]).norm());
+      away_by = std::max(away_by, (c[i] - a[i] - Vec3(1.5, 0, -2)).norm());
+    }
+    EXPECT_LT(back, 1e-9) << t;     // the file's values are rounded when written
+    EXPECT_LT(away_by, 1e-9) << t;
+  }
+}
+
 }  // namespace
 }  // namespace vdc
