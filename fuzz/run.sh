@@ -30,6 +30,8 @@ for target in "${targets[@]}"; do
   # face grid, seconds of work in Release and minutes under the sanitizers) is kept as a finding
   # and fuzzing goes on; a crash ends the run.
   started=$SECONDS
+  stamp="$build/fuzz-$target.started"
+  touch "$stamp"
   "$program" -fork=1 -ignore_timeouts=1 -ignore_ooms=1 -max_total_time="$seconds" -max_len=$max_len -timeout=60 -rss_limit_mb=4096 \
     -artifact_prefix="$findings/$target-" "$work" "$here/fuzz/corpus/$target" "$here/tests/corpus" "$here/tests/data" >"$log" 2>&1
   code=$?
@@ -37,7 +39,7 @@ for target in "${targets[@]}"; do
   runs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
   rate=$(grep -o 'exec/s:\? [0-9]*' "$log" | tail -1 | grep -o '[0-9]*$')
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1)
-  found=$(ls "$findings" | grep -c "^$target-")
+  found=$(find "$findings" -name "$target-*" -newer "$stamp" | wc -l)  # this run's only
   timeouts=$(grep -o 'oom/timeout/crash: [0-9]*/[0-9]*/[0-9]*' "$log" | tail -1 | cut -d' ' -f2)
   "$program" -merge=1 -max_len=$max_len "$here/fuzz/corpus/$target" "$work" >"$build/fuzz-$target-merge.log" 2>&1
   saved=$(ls "$here/fuzz/corpus/$target" | wc -l)
