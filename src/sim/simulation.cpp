@@ -11,6 +11,7 @@
 #include "remesh/sizing.hpp"
 #include "view/view_sizing.hpp"
 #include "remesh/obstacle_planes.hpp"
+#include "collision/intersection.hpp"
 #include "collision/untangle.hpp"
 
 namespace vdc {
@@ -53,7 +54,7 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
   }
   rebuild();
   FrameStats start;
-  untangle_cloth(start);
+  if (untangle_cloth(start).remaining > 0) report_start_crossings();
 }
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePoint from, const std::string& source)
@@ -237,6 +238,30 @@ void Simulation::keep_fewer_crossings(std::vector<Mesh> started_with, int remesh
   }
   if (log_) log_(msg.str());
   stats.remesh_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void Simulation::report_start_crossings() {
+  if (!log_) return;
+  const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
+  for (const auto& g : scene_.garments) {
+    std::vector<std::array<int32_t, 3>> faces;
+    std::vector<Vec3> x(static_cast<std::size_t>(g.mesh.node_capacity()), Vec3::Zero());
+    for (NodeId n : g.mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
+    for (FaceId f : g.mesh.faces()) {
+      std::array<int32_t, 3> nodes{};
+      for (int k = 0; k < 3; ++k) nodes[static_cast<std::size_t>(k)] = g.mesh.face_node(f, k).idx;
+      faces.push_back(nodes);
+    }
+    for (std::size_t o = 0; o < obstacle_meshes_.size(); ++o) {
+      const int pairs = count_intersections_between(faces, x, obstacle_meshes_[o].faces, obstacle_x[o]);
+      if (pairs == 0) continue;
+      std::ostringstream msg;
+      msg << "frame " << frame_ << ": garment '" << g.name << "' crosses obstacle '" << scene_.obstacles[o].name << "' in " << pairs
+          << " face pairs that untangling could not separate: it does not fit the body it is on (made for another figure or pose?);"
+          << " remeshes that add crossings will be undone while it does";
+      log_(msg.str());
+    }
+  }
 }
 
 UntangleReport Simulation::untangle_cloth(FrameStats& stats) {

@@ -103,6 +103,9 @@ class Simulation {
                                            std::vector<Mesh>& started_with);
   // Removes interpenetrations that exist at the current time (start-up, after remeshing).
   UntangleReport untangle_cloth(FrameStats& stats);
+  // After untangling at the start left crossings: logs, once, each garment that still crosses an
+  // obstacle, with the obstacle and the count of crossing face pairs.
+  void report_start_crossings();
   // After a remesh whose crossings untangling could not all remove (remeshed_pairs left): goes on
   // with whichever of the frame's start meshes and the remeshed ones has fewer.
   void keep_fewer_crossings(std::vector<Mesh> started_with, int remeshed_pairs, FrameStats& stats);
