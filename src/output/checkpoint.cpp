@@ -68,9 +68,9 @@ void write_checkpoint(const std::string& path, const Ensemble& run, const Checkp
   out.value<uint64_t>(run.parts().size());
   for (const auto& part : run.parts()) {
     out.value<uint64_t>(part->scene().garments.size());
-    for (const auto& g : part->scene().garments) {
-      out.string(g.name);
-      g.mesh.write_binary(out);
+    for (std::size_t g = 0; g < part->scene().garments.size(); ++g) {
+      out.string(part->scene().garments[g].name);
+      part->garment_mesh(g).write_binary(out);
     }
   }
   const uint64_t sum = fnv1a64(out.bytes().data(), out.bytes().size());

@@ -132,18 +132,23 @@ void RunOutput::tally(int faces, double seconds) {
 
 void RunOutput::write_frame(const Ensemble& run, int frame) const {
   for (const auto& part : run.parts()) {
-    for (const auto& g : part->scene().garments) {
-      if (!write_obj(g.mesh, frame_file(dir_, "cloth", g.name, frame)))
-        throw OutputError(frame_file(dir_, "cloth", g.name, frame), "cannot write");
+    const Scene& scene = part->scene();
+    for (std::size_t g = 0; g < scene.garments.size(); ++g) {
+      const std::string& name = scene.garments[g].name;
+      const Mesh& mesh = part->garment_mesh(g);
+      if (!write_obj(mesh, frame_file(dir_, "cloth", name, frame))) throw OutputError(frame_file(dir_, "cloth", name, frame), "cannot write");
       // View mode: each garment's faces with their view factors, beside the OBJ.
-      if (g.mesh.face_attrs().has(kViewFactorAttr) &&
-          !write_ply_with_face_values(g.mesh, frame_file(dir_, "cloth", g.name, frame, ".ply"), "view", kViewFactorAttr))
-        throw OutputError(frame_file(dir_, "cloth", g.name, frame, ".ply"), "cannot write");
+      if (mesh.face_attrs().has(kViewFactorAttr) &&
+          !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), "view", kViewFactorAttr))
+        throw OutputError(frame_file(dir_, "cloth", name, frame, ".ply"), "cannot write");
     }
     // Obstacles of no group are in every part: written once, from the first.
-    for (const auto& o : part->scene().obstacles)
-      if ((part == run.parts().front() || !o.group.empty()) && !write_obj(o.mesh, frame_file(dir_, "obstacle", o.name, frame)))
-        throw OutputError(frame_file(dir_, "obstacle", o.name, frame), "cannot write");
+    for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
+      const ObstacleSpec& spec = scene.obstacles[o];
+      if ((part == run.parts().front() || !spec.group.empty()) &&
+          !write_obj(part->obstacle_mesh(o), frame_file(dir_, "obstacle", spec.name, frame)))
+        throw OutputError(frame_file(dir_, "obstacle", spec.name, frame), "cannot write");
+    }
   }
 }
 
@@ -192,8 +197,11 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   j["faces"] = {{"min", min_faces_}, {"max", max_faces_}, {"mean", rows_ ? sum_faces_ / rows_ : 0.0}};
   nlohmann::json garments = nlohmann::json::array();
   for (const auto& part : run.parts())
-    for (const auto& g : part->scene().garments)
-      garments.push_back({{"name", g.name}, {"material", g.material.name}, {"faces", g.mesh.num_faces()}, {"vertices", g.mesh.num_nodes()}});
+    for (std::size_t g = 0; g < part->scene().garments.size(); ++g) {
+      const GarmentSpec& spec = part->scene().garments[g];
+      const Mesh& mesh = part->garment_mesh(g);
+      garments.push_back({{"name", spec.name}, {"material", spec.material.name}, {"faces", mesh.num_faces()}, {"vertices", mesh.num_nodes()}});
+    }
   j["garments"] = garments;
   std::ofstream out(dir_ + "/summary.json");
   out << j.dump(2) << "\n";

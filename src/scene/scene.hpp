@@ -23,7 +23,7 @@ namespace vdc {
 struct GarmentSpec {
   std::string name;
   std::string group;  // garments of different groups never touch: they are simulated apart
-  Mesh mesh;  // placed in world space; node attributes kHandleAttr and kAnchorAttr set
+  Mesh mesh;  // at the start, placed in world space; node attributes kHandleAttr and kAnchorAttr set
   Material material;
   std::vector<ClothHandle> handles;
 };
@@ -33,7 +33,7 @@ struct GarmentSpec {
 struct ObstacleSpec {
   std::string name;
   std::string group;  // collides with its group's garments only; empty: with every garment
-  Mesh mesh;               // world positions at the current time
+  Mesh mesh;               // world positions at time 0 (a run's are Simulation::obstacle_mesh)
   std::vector<Vec3> rest;  // placed positions, by node index
   Vec3 pivot = Vec3::Zero();
   Vec3Track translate;     // offsets, m

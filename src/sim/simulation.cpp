@@ -44,17 +44,18 @@ CollisionMesh collision_mesh(const Mesh& mesh) {
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
     : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
   check_options_and_collect_obstacles();
-  for (auto& g : scene_.garments) {
-    if (!g.mesh.is_compact()) g.mesh.compact();
+  for (const auto& g : scene_.garments) {
+    Mesh& mesh = garments_.emplace_back(g.mesh);
+    if (!mesh.is_compact()) mesh.compact();
     if (options_.mode == SimMode::Fixed) {
       // The non-adaptive baseline: one remesh to a uniform resolution, never again.
-      set_uniform_sizing(g.mesh, scene_.fixed_size > 0 ? scene_.fixed_size : scene_.remeshing.size_min);
-      remesh(g.mesh);
+      set_uniform_sizing(mesh, scene_.fixed_size > 0 ? scene_.fixed_size : scene_.remeshing.size_min);
+      remesh(mesh);
     }
   }
   rebuild();
   FrameStats start;
-  if (untangle_cloth(start).remaining > 0) report_start_crossings();
+  if (untangle_garments(start).remaining > 0) report_start_crossings();
 }
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePoint from, const std::string& source)
@@ -64,7 +65,7 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePo
     throw InputError(source, "", "holds " + std::to_string(from.garments.size()) + " garment meshes where the scene has " +
                                      std::to_string(scene_.garments.size()));
   for (std::size_t g = 0; g < from.garments.size(); ++g) {
-    auto& garment = scene_.garments[g];
+    const auto& garment = scene_.garments[g];
     const Mesh& mesh = from.garments[g];
     if (from.names[g] != garment.name)
       throw InputError(source, "", "has garment '" + from.names[g] + "' where the scene has '" + garment.name + "'");
@@ -80,7 +81,7 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePo
     } catch (const std::logic_error& e) {
       throw InputError(source, garment.name, std::string("the garment's mesh does not fit the scene: ") + e.what());
     }
-    garment.mesh = std::move(from.garments[g]);
+    garments_.push_back(std::move(from.garments[g]));
   }
   place_obstacles();
   try {
@@ -93,15 +94,18 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePo
 void Simulation::check_options_and_collect_obstacles() {
   if (options_.mode == SimMode::View && !scene_.camera)
     throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block to the scene");
-  for (const auto& o : scene_.obstacles) obstacle_meshes_.push_back(collision_mesh(o.mesh));
+  for (const auto& o : scene_.obstacles) {
+    obstacle_faces_.push_back(collision_mesh(o.mesh));
+    obstacles_.push_back(o.mesh);
+  }
 }
 
 void Simulation::place_obstacles() {
   const std::vector<std::vector<Vec3>> x = obstacle_positions(time());
   for (std::size_t i = 0; i < scene_.obstacles.size(); ++i) {
-    auto& o = scene_.obstacles[i];
-    if (o.moves())
-      for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[i][static_cast<std::size_t>(n.idx)];
+    Mesh& mesh = obstacles_[i];
+    if (scene_.obstacles[i].moves())
+      for (NodeId n : mesh.nodes()) mesh.x(n) = x[i][static_cast<std::size_t>(n.idx)];
   }
 }
 
@@ -120,7 +124,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
   // The meshes the frame starts with, free of crossings when the last step ended without any: the
   // fallback for a remesh whose crossings untangling cannot remove (size_and_remesh keeps them as
   // sized, so that they carry this frame's view and compression factors).
-  std::vector<Mesh> started_with(scene_.garments.size());
+  std::vector<Mesh> started_with(garments_.size());
   const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
   // The collider's hierarchies, unless a restart will drop them (a resumed run has none yet, and
   // must find what an uninterrupted one finds).
@@ -130,18 +134,17 @@ void Simulation::remesh_garments(FrameStats& stats) {
   // sag through the layer beside it any more than through the body.
   std::vector<CollisionMesh> garment_meshes;
   std::vector<std::vector<Vec3>> garment_x;
-  for (const auto& g : scene_.garments) {
-    garment_meshes.push_back(collision_mesh(g.mesh));
-    std::vector<Vec3> x(static_cast<std::size_t>(g.mesh.node_capacity()), Vec3::Zero());
-    for (NodeId n : g.mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
+  for (const Mesh& mesh : garments_) {
+    garment_meshes.push_back(collision_mesh(mesh));
+    std::vector<Vec3> x(static_cast<std::size_t>(mesh.node_capacity()), Vec3::Zero());
+    for (NodeId n : mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = mesh.x(n);
     garment_x.push_back(std::move(x));
   }
-  const std::size_t count = scene_.garments.size();
+  const std::size_t count = garments_.size();
   std::vector<std::vector<ObstaclePlane>> planes(count);
   std::vector<std::unique_ptr<ViewSizing>> views(count);
   for (std::size_t gi = 0; gi < count; ++gi) {
-    const auto& g = scene_.garments[gi];
-    std::vector<CollisionMesh> near_meshes = obstacle_meshes_;
+    std::vector<CollisionMesh> near_meshes = obstacle_faces_;
     std::vector<std::vector<Vec3>> near_x = obstacle_x;
     for (std::size_t other = 0; other < count; ++other)
       if (other != gi) {
@@ -152,7 +155,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
     if (options_.mode == SimMode::View) {
       auto tv = std::chrono::steady_clock::now();
       views[gi] = std::make_unique<ViewSizing>(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
-      views[gi]->evaluate(g.mesh);
+      views[gi]->evaluate(garments_[gi]);
       stats.visible_faces += views[gi]->counts().visible;
       stats.back_facing_faces += views[gi]->counts().back_facing;
       stats.out_of_frame_faces += views[gi]->counts().out_of_frame;
@@ -169,13 +172,13 @@ void Simulation::remesh_garments(FrameStats& stats) {
   if (changed) rebuild();
   else if (options_.mode == SimMode::View) {
     std::size_t first_face = 0;
-    for (const auto& g : scene_.garments) {
-      update_compression(model_, g.mesh, first_face);
-      first_face += static_cast<std::size_t>(g.mesh.num_faces());
+    for (const Mesh& mesh : garments_) {
+      update_compression(model_, mesh, first_face);
+      first_face += static_cast<std::size_t>(mesh.num_faces());
     }
   }
   stats.remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const UntangleReport remeshed = untangle_cloth(stats);
+  const UntangleReport remeshed = untangle_garments(stats);
   if (remeshed.remaining > 0 && changed) keep_fewer_crossings(std::move(started_with), remeshed.remaining, stats);
 }
 
@@ -186,14 +189,14 @@ void Simulation::remesh_garments(FrameStats& stats) {
 std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                                      const std::vector<std::vector<ObstaclePlane>>& planes,
                                                      std::vector<Mesh>& started_with) {
-  const std::size_t count = scene_.garments.size();
+  const std::size_t count = garments_.size();
   std::vector<double> faces;
-  for (const auto& g : scene_.garments) faces.push_back(g.mesh.num_faces());
+  for (const Mesh& mesh : garments_) faces.push_back(mesh.num_faces());
   std::vector<RemeshStats> remeshed(count);
   const int team = std::max(1, std::min<int>(options_.threads, static_cast<int>(count)));
   for_each_in_order(largest_first(faces), team, [&](int k) {
     const auto gi = static_cast<std::size_t>(k);
-    Mesh& mesh = scene_.garments[gi].mesh;
+    Mesh& mesh = garments_[gi];
     if (views[gi]) {
       auto& factor = mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
       for (FaceId f : mesh.faces()) factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
@@ -217,14 +220,11 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
 // remeshed one has fewer crossings left after untangling.
 void Simulation::keep_fewer_crossings(std::vector<Mesh> started_with, int remeshed_pairs, FrameStats& stats) {
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<Mesh> remeshed;
-  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
-    remeshed.push_back(std::move(scene_.garments[g].mesh));
-    scene_.garments[g].mesh = std::move(started_with[g]);
-  }
+  std::vector<Mesh> remeshed = std::move(garments_);
+  garments_ = std::move(started_with);
   rebuild();
   FrameStats scratch;
-  const int start_pairs = untangle_cloth(scratch).remaining;
+  const int start_pairs = untangle_garments(scratch).remaining;
   std::ostringstream msg;
   msg << "frame " << frame_ << ": remeshing left " << remeshed_pairs << " crossing pair(s) that untangling could not remove; ";
   if (start_pairs < remeshed_pairs) {
@@ -232,7 +232,7 @@ void Simulation::keep_fewer_crossings(std::vector<Mesh> started_with, int remesh
     stats.remesh_undone = 1;
     msg << "the frame keeps the mesh it started with (" << start_pairs << " crossing pair(s))";
   } else {
-    for (std::size_t g = 0; g < scene_.garments.size(); ++g) scene_.garments[g].mesh = std::move(remeshed[g]);
+    garments_ = std::move(remeshed);
     rebuild();
     msg << "the mesh it started with has as many (" << start_pairs << "), so the remeshed one is kept";
   }
@@ -243,20 +243,21 @@ void Simulation::keep_fewer_crossings(std::vector<Mesh> started_with, int remesh
 void Simulation::report_start_crossings() {
   if (!log_) return;
   const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
-  for (const auto& g : scene_.garments) {
+  for (std::size_t g = 0; g < garments_.size(); ++g) {
+    const Mesh& mesh = garments_[g];
     std::vector<std::array<int32_t, 3>> faces;
-    std::vector<Vec3> x(static_cast<std::size_t>(g.mesh.node_capacity()), Vec3::Zero());
-    for (NodeId n : g.mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = g.mesh.x(n);
-    for (FaceId f : g.mesh.faces()) {
+    std::vector<Vec3> x(static_cast<std::size_t>(mesh.node_capacity()), Vec3::Zero());
+    for (NodeId n : mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = mesh.x(n);
+    for (FaceId f : mesh.faces()) {
       std::array<int32_t, 3> nodes{};
-      for (int k = 0; k < 3; ++k) nodes[static_cast<std::size_t>(k)] = g.mesh.face_node(f, k).idx;
+      for (int k = 0; k < 3; ++k) nodes[static_cast<std::size_t>(k)] = mesh.face_node(f, k).idx;
       faces.push_back(nodes);
     }
-    for (std::size_t o = 0; o < obstacle_meshes_.size(); ++o) {
-      const int pairs = count_intersections_between(faces, x, obstacle_meshes_[o].faces, obstacle_x[o]);
+    for (std::size_t o = 0; o < obstacle_faces_.size(); ++o) {
+      const int pairs = count_intersections_between(faces, x, obstacle_faces_[o].faces, obstacle_x[o]);
       if (pairs == 0) continue;
       std::ostringstream msg;
-      msg << "frame " << frame_ << ": garment '" << g.name << "' crosses obstacle '" << scene_.obstacles[o].name << "' in " << pairs
+      msg << "frame " << frame_ << ": garment '" << scene_.garments[g].name << "' crosses obstacle '" << scene_.obstacles[o].name << "' in " << pairs
           << " face pairs that untangling could not separate: it does not fit the body it is on (made for another figure or pose?);"
           << " remeshes that add crossings will be undone while it does";
       log_(msg.str());
@@ -273,7 +274,7 @@ UntangleReport Simulation::untangle_cloth(FrameStats& stats) {
   params.thickness = scene_.collision.thickness;
   params.step = scene_.collision.thickness;
   params.max_iterations = scene_.collision.untangle_iterations;
-  const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacle_meshes_, obstacle_x, params,
+  const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacle_faces_, obstacle_x, params,
                                     collider_->obstacle_face_trees(obstacle_x, options_.threads));
   stats.untangle_moves += r.moves;
   // Routine untangling (cloth-obstacle pairs cleared in one pass: nodes a split put on a chord
@@ -287,8 +288,14 @@ UntangleReport Simulation::untangle_cloth(FrameStats& stats) {
     if (r.remaining > 0) msg << "; " << r.remaining << " pairs remain";
     log_(msg.str());
   }
-  if (r.moves > 0) scatter_state();
   stats.collision_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+UntangleReport Simulation::untangle_garments(FrameStats& stats) {
+  gather_state();
+  const UntangleReport r = untangle_cloth(stats);
+  if (r.moves > 0) scatter_state();
   return r;
 }
 
@@ -298,30 +305,29 @@ void Simulation::rebuild() {
   restart_pending_ = false;
   model_ = ClothModel();
   offsets_.clear();
-  for (const auto& g : scene_.garments) offsets_.push_back(append_garment(model_, g.mesh, g.material));
+  for (std::size_t g = 0; g < garments_.size(); ++g) offsets_.push_back(append_garment(model_, garments_[g], scene_.garments[g].material));
   LinearSolverParams solver_params = scene_.solver.params;
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
-  if (restart) collider_ = std::make_unique<Collider>(model_.face_nodes, obstacle_meshes_, model_.num_nodes);
+  if (restart) collider_ = std::make_unique<Collider>(model_.face_nodes, obstacle_faces_, model_.num_nodes);
   else collider_->set_cloth(model_.face_nodes, model_.num_nodes);
-  gather_state();
 }
 
-void Simulation::gather_state() {
-  x_.resize(3 * static_cast<int64_t>(model_.num_nodes));
-  v_.resize(x_.size());
-  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
-    const Mesh& m = scene_.garments[g].mesh;
+void Simulation::gather(Eigen::VectorXd& x, Eigen::VectorXd& v) const {
+  x.resize(3 * static_cast<int64_t>(model_.num_nodes));
+  v.resize(x.size());
+  for (std::size_t g = 0; g < garments_.size(); ++g) {
+    const Mesh& m = garments_[g];
     for (NodeId n : m.nodes()) {
-      x_.segment<3>(3 * (offsets_[g] + n.idx)) = m.x(n);
-      v_.segment<3>(3 * (offsets_[g] + n.idx)) = m.v(n);
+      x.segment<3>(3 * (offsets_[g] + n.idx)) = m.x(n);
+      v.segment<3>(3 * (offsets_[g] + n.idx)) = m.v(n);
     }
   }
 }
 
 void Simulation::scatter_state() {
-  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
-    Mesh& m = scene_.garments[g].mesh;
+  for (std::size_t g = 0; g < garments_.size(); ++g) {
+    Mesh& m = garments_[g];
     for (NodeId n : m.nodes()) {
       m.x(n) = x_.segment<3>(3 * (offsets_[g] + n.idx));
       m.v(n) = v_.segment<3>(3 * (offsets_[g] + n.idx));
@@ -331,13 +337,14 @@ void Simulation::scatter_state() {
 
 std::vector<VelocityConstraint> Simulation::constraints(double t_end, double h) const {
   std::vector<VelocityConstraint> out;
-  for (std::size_t g = 0; g < scene_.garments.size(); ++g) {
+  for (std::size_t g = 0; g < garments_.size(); ++g) {
     const auto& garment = scene_.garments[g];
-    const auto& which = garment.mesh.node_attrs().get<int32_t>(kHandleAttr);
-    const auto& anchor = garment.mesh.node_attrs().get<Vec3>(kAnchorAttr);
+    const Mesh& mesh = garments_[g];
+    const auto& which = mesh.node_attrs().get<int32_t>(kHandleAttr);
+    const auto& anchor = mesh.node_attrs().get<Vec3>(kAnchorAttr);
     std::vector<Eigen::Affine3d> carried;
     for (const ClothHandle& handle : garment.handles) carried.push_back(handle.carry(t_end));
-    for (NodeId n : garment.mesh.nodes()) {
+    for (NodeId n : mesh.nodes()) {
       if (which[n] < 0) continue;
       const auto k = static_cast<std::size_t>(which[n]);
       const ClothHandle& handle = garment.handles[k];
@@ -493,6 +500,7 @@ FrameStats Simulation::step_frame() {
   auto boundary = [&](int s) { return s == scene_.substeps ? (frame_ + 1) * scene_.frame_time : t_frame + s * h; };
   if (options_.mode != SimMode::Fixed) remesh_garments(stats);
   if (restart_pending_) rebuild();  // unless remeshing just did
+  gather_state();
   for (int s = 0; s < scene_.substeps; ++s) advance(boundary(s), boundary(s + 1), stats);
   ++frame_;
   // A zone that fell back to its start-of-step positions rode along with the obstacles it
@@ -511,30 +519,32 @@ FrameStats Simulation::step_frame() {
 
 int Simulation::num_faces() const {
   int n = 0;
-  for (const auto& g : scene_.garments) n += g.mesh.num_faces();
+  for (const Mesh& mesh : garments_) n += mesh.num_faces();
   return n;
 }
 
 int Simulation::num_nodes() const {
   int n = 0;
-  for (const auto& g : scene_.garments) n += g.mesh.num_nodes();
+  for (const Mesh& mesh : garments_) n += mesh.num_nodes();
   return n;
 }
 
 EnergyReport Simulation::energy() const {
+  Eigen::VectorXd x, v;
+  gather(x, v);
   EnergyReport e;
   for (int32_t i = 0; i < model_.num_nodes; ++i) {
     const double m = model_.node_mass[static_cast<std::size_t>(i)];
-    e.kinetic += 0.5 * m * v_.segment<3>(3 * i).squaredNorm();
-    e.gravitational -= m * scene_.gravity.dot(x_.segment<3>(3 * i));
+    e.kinetic += 0.5 * m * v.segment<3>(3 * i).squaredNorm();
+    e.gravitational -= m * scene_.gravity.dot(x.segment<3>(3 * i));
   }
   for (std::size_t f = 0; f < model_.face_nodes.size(); ++f) {
     const auto& n = model_.face_nodes[f];
-    e.elastic += membrane_energy({x_.segment<3>(3 * n[0]), x_.segment<3>(3 * n[1]), x_.segment<3>(3 * n[2])}, model_.membranes[f]);
+    e.elastic += membrane_energy({x.segment<3>(3 * n[0]), x.segment<3>(3 * n[1]), x.segment<3>(3 * n[2])}, model_.membranes[f]);
   }
   for (std::size_t b = 0; b < model_.bend_nodes.size(); ++b) {
     const auto& n = model_.bend_nodes[b];
-    e.elastic += bending_energy({x_.segment<3>(3 * n[0]), x_.segment<3>(3 * n[1]), x_.segment<3>(3 * n[2]), x_.segment<3>(3 * n[3])},
+    e.elastic += bending_energy({x.segment<3>(3 * n[0]), x.segment<3>(3 * n[1]), x.segment<3>(3 * n[2]), x.segment<3>(3 * n[3])},
                                 model_.bends[b]);
   }
   return e;

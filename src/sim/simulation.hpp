@@ -87,7 +87,12 @@ class Simulation {
 
   int frame() const { return frame_; }
   double time() const { return frame_ * scene_.frame_time; }
+  // The scene as read: never changed by the run (its garment meshes are the start's).
   const Scene& scene() const { return scene_; }
+  // The run's state: garment g's mesh now (positions, velocities, remeshed connectivity) and
+  // obstacle o's mesh placed at time(), in the scene's order.
+  const Mesh& garment_mesh(std::size_t g) const { return garments_[g]; }
+  const Mesh& obstacle_mesh(std::size_t o) const { return obstacles_[o]; }
   const SimOptions& options() const { return options_; }
   EnergyReport energy() const;
   int num_faces() const;
@@ -101,8 +106,10 @@ class Simulation {
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                            const std::vector<std::vector<ObstaclePlane>>& planes,
                                            std::vector<Mesh>& started_with);
-  // Removes interpenetrations that exist at the current time (start-up, after remeshing).
+  // Removes interpenetrations of x_ at the current time (the steps' working vectors).
   UntangleReport untangle_cloth(FrameStats& stats);
+  // The same on the garments' meshes (start-up, after remeshing): gathered, untangled, scattered.
+  UntangleReport untangle_garments(FrameStats& stats);
   // After untangling at the start left crossings: logs, once, each garment that still crosses an
   // obstacle, with the obstacle and the count of crossing face pairs.
   void report_start_crossings();
@@ -114,8 +121,9 @@ class Simulation {
   // Every obstacle's vertex positions at time t. The last two times asked for are remembered:
   // each step starts at the time the one before ended, and skinning a body is not free.
   std::vector<std::vector<Vec3>> obstacle_positions(double t);
-  void gather_state();                  // meshes -> x_, v_
-  void scatter_state();                 // x_, v_ -> meshes
+  void gather(Eigen::VectorXd& x, Eigen::VectorXd& v) const;  // garments_ -> x, v in model order
+  void gather_state() { gather(x_, v_); }
+  void scatter_state();                 // x_, v_ -> garments_
   std::vector<VelocityConstraint> constraints(double t_end, double h) const;
   // One substep from time t to t_end, halved as step_recovery.hpp's policy says.
   void advance(double t, double t_end, FrameStats& stats);
@@ -137,7 +145,7 @@ class Simulation {
   static constexpr int kCollisionHalvings = 2;
 
 
-  Scene scene_;
+  const Scene scene_;
   SimOptions options_;
   Log log_;
   int frame_ = 0;
@@ -145,13 +153,19 @@ class Simulation {
   ClothModel model_;
   std::vector<int32_t> offsets_;  // first model node of each garment
   std::unique_ptr<ImplicitIntegrator> integrator_;
-  std::vector<CollisionMesh> obstacle_meshes_;  // the obstacles' faces, for collisions and sizing
+  // The state between frames: the garments' meshes, which the step loop's x_, v_ are gathered
+  // from when its steps begin and scattered back to when they end.
+  std::vector<Mesh> garments_;
+  std::vector<Mesh> obstacles_;  // placed at time()
+  std::vector<CollisionMesh> obstacle_faces_;  // the obstacles' faces, for collisions and sizing
   struct ObstaclePositions {
     double t = 0;
     std::vector<std::vector<Vec3>> x;  // empty: not computed yet
   };
   std::array<ObstaclePositions, 2> obstacle_positions_;  // the most recent first
   std::unique_ptr<Collider> collider_;
+  // The step loop's working vectors (all garments' nodes, model order): meaningful from a
+  // gather_state() to the scatter_state() that ends the steps or the untangling using them.
   Eigen::VectorXd x_, v_;
 };
 

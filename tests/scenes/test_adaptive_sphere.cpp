@@ -24,8 +24,8 @@ TEST(AdaptiveSphere, RefinesOverTheSphereCoarseWhereFlatAndNeverIntersects) {
   for (int f = 0; f < 130; ++f) {
     FrameStats s = sim.step_frame();
     EXPECT_EQ(s.collision_fallbacks, 0) << "frame " << s.frame;
-    const Mesh& cloth = sim.scene().garments[0].mesh;
-    const Mesh& sphere = sim.scene().obstacles[0].mesh;
+    const Mesh& cloth = sim.garment_mesh(0);
+    const Mesh& sphere = sim.obstacle_mesh(0);
     const Vec3 centre = centroid(sphere);
     const double radius = (sphere.x(*sphere.nodes().begin()) - centre).norm();
     // The icosphere's faces lie at least radius cos(0.2) (its largest face angle) from the

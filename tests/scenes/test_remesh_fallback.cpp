@@ -62,8 +62,8 @@ TEST(RemeshFallback, CrossingsUntanglingCannotRemoveMakeTheFrameKeepItsStartMesh
   scene.collision.untangle_iterations = 0;  // detection only: any crossing left by a remesh stays
   Simulation sim(std::move(scene), SimOptions{SimMode::Adaptive, 1});
   auto crossings = [&] {
-    const Mesh& cloth = sim.scene().garments[0].mesh;
-    return test::self_crossings(cloth) + test::crossings_between(cloth, sim.scene().obstacles[0].mesh);
+    const Mesh& cloth = sim.garment_mesh(0);
+    return test::self_crossings(cloth) + test::crossings_between(cloth, sim.obstacle_mesh(0));
   };
   ASSERT_EQ(crossings(), 0) << "the wrapped cap starts clear of the sphere";
   const int faces_before = sim.num_faces();

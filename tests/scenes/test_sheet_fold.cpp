@@ -26,7 +26,7 @@ FoldRun run_sheet_fold(Scene scene, int frames) {
     run.contacts += s.impacts + s.proximities;
     run.fallbacks += s.collision_fallbacks;
     run.halvings += s.halvings;
-    const Mesh& m = sim.scene().garments[0].mesh;
+    const Mesh& m = sim.garment_mesh(0);
     double top = -1e9;
     for (NodeId n : m.nodes()) {
       EXPECT_GE(m.x(n).y(), -0.1 * thickness) << "frame " << s.frame << ": a vertex is in the ground";

@@ -33,8 +33,8 @@ TEST(SheetSphere, NothingInsideTheSphereAndNoSelfIntersectionAtAnyFrameEnd) {
     FrameStats s = sim.step_frame();
     contacts += s.impacts + s.proximities;
     EXPECT_EQ(s.collision_fallbacks, 0) << "frame " << s.frame;
-    const Mesh& cloth = sim.scene().garments[0].mesh;
-    const Mesh& sphere = sim.scene().obstacles[0].mesh;
+    const Mesh& cloth = sim.garment_mesh(0);
+    const Mesh& sphere = sim.obstacle_mesh(0);
     for (NodeId n : cloth.nodes())
       ASSERT_LE(depth_inside_convex(sphere, cloth.x(n)), 0.1 * thickness) << "frame " << s.frame << " node " << n.idx;
     ASSERT_EQ(test::self_crossings(cloth), 0) << "frame " << s.frame;
@@ -58,8 +58,8 @@ TEST(SheetSphere, FramesWhoseZonesFellBackEndWithNoCrossings) {
   for (int f = 0; f < 70; ++f) {  // the fall, and the sphere's push from 1.5 s
     const FrameStats s = sim.step_frame();
     fallbacks += s.collision_fallbacks;
-    const Mesh& cloth = sim.scene().garments[0].mesh;
-    const Mesh& sphere = sim.scene().obstacles[0].mesh;
+    const Mesh& cloth = sim.garment_mesh(0);
+    const Mesh& sphere = sim.obstacle_mesh(0);
     ASSERT_EQ(test::crossings_between(cloth, sphere), 0) << "frame " << s.frame << " (" << fallbacks << " fallbacks so far)";
     ASSERT_EQ(test::self_crossings(cloth), 0) << "frame " << s.frame;
   }

@@ -60,7 +60,7 @@ TEST(ViewFidelity, TheStrapsStayOnTheShouldersAsInTheAdaptiveRun) {
     if (frame < 10) continue;  // the dress is still dropping onto the shoulders
     for (int side : {1, -1}) {
       const Vec3 top = shoulder_top(body, chest, view.time(), side);
-      const double a = strap_gap(adaptive.scene().garments[0].mesh, top), v = strap_gap(view.scene().garments[0].mesh, top);
+      const double a = strap_gap(adaptive.garment_mesh(0), top), v = strap_gap(view.garment_mesh(0), top);
       EXPECT_LT(a, on_shoulder) << "adaptive, frame " << frame << ", side " << side;
       EXPECT_LT(v, on_shoulder) << "view, frame " << frame << ", side " << side << " (adaptive: " << a << " m)";
       EXPECT_GT(s.back_facing_faces, 0);

@@ -23,8 +23,8 @@ TEST(ViewMode, WithFactorOneAndNoFloorItIsTheAdaptiveRunExactly) {
   for (int f = 0; f < 30; ++f) {
     adaptive.step_frame();
     FrameStats s = view.step_frame();
-    const Mesh& a = adaptive.scene().garments[0].mesh;
-    const Mesh& b = view.scene().garments[0].mesh;
+    const Mesh& a = adaptive.garment_mesh(0);
+    const Mesh& b = view.garment_mesh(0);
     ASSERT_EQ(a.num_faces(), b.num_faces()) << "frame " << s.frame;
     ASSERT_EQ(a.num_nodes(), b.num_nodes()) << "frame " << s.frame;
     for (NodeId n : a.nodes()) ASSERT_EQ(a.x(n), b.x(n)) << "frame " << s.frame << " node " << n.idx;
@@ -52,13 +52,13 @@ TEST(ViewMode, FacesSeenFromBehindOrOutOfFrameAreCoarsened) {
   EXPECT_LT(view_back, adaptive_back / 3);  // v_back = 0.2: edges 5 times longer
   EXPECT_LT(view_faces, adaptive_faces);
   EXPECT_GT(out_of_frame, 0);
-  const auto& factor = view.scene().garments[0].mesh.face_attrs().get<double>(kViewFactorAttr);
+  const auto& factor = view.garment_mesh(0).face_attrs().get<double>(kViewFactorAttr);
   double lowest = 1;
-  for (FaceId f : view.scene().garments[0].mesh.faces()) lowest = std::min(lowest, factor[f]);
+  for (FaceId f : view.garment_mesh(0).faces()) lowest = std::min(lowest, factor[f]);
   EXPECT_LT(lowest, 0.5);
   // Faces the camera coarsened resist compression less, by how much coarser (in the metric)
   // than their physics they may be (membrane.hpp); the others are the plain material.
-  const Mesh& sheet = view.scene().garments[0].mesh;
+  const Mesh& sheet = view.garment_mesh(0);
   const auto& coarsening = sheet.face_attrs().get<double>(kCoarseningAttr);
   const auto& compression = sheet.face_attrs().get<double>(kCompressionAttr);
   int relaxed = 0;

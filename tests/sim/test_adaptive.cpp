@@ -24,7 +24,7 @@ TEST(Adaptive, SheetHangRemeshesEveryFrameAndConserves) {
     FrameStats s = sim.step_frame();
     splits += s.splits;
     collapses += s.collapses;
-    const Mesh& mesh = sim.scene().garments[0].mesh;
+    const Mesh& mesh = sim.garment_mesh(0);
     ValidationReport v = mesh.validate();
     ASSERT_TRUE(v.ok()) << "frame " << s.frame << "\n" << v.summary();
     double area = 0;
@@ -91,8 +91,8 @@ TEST(Adaptive, GarmentsRemeshedSideBySideAsOnOneThread) {
       EXPECT_EQ(a.collapses, b.collapses);
       EXPECT_EQ(a.flips, b.flips);
       for (std::size_t g = 0; g < 3; ++g) {
-        const Mesh& ma = one.scene().garments[g].mesh;
-        const Mesh& mb = two.scene().garments[g].mesh;
+        const Mesh& ma = one.garment_mesh(g);
+        const Mesh& mb = two.garment_mesh(g);
         ASSERT_EQ(ma.num_faces(), mb.num_faces()) << sim_mode_name(mode) << ", garment " << g << ", frame " << f + 1;
         ASSERT_EQ(ma.num_nodes(), mb.num_nodes());
         for (NodeId n : ma.nodes()) ASSERT_EQ(ma.x(n), mb.x(n)) << sim_mode_name(mode) << ", garment " << g << ", frame " << f + 1;

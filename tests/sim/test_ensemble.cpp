@@ -43,14 +43,14 @@ TEST(Ensemble, PartsGiveTheSameResultsInAnyOrderOnAnyThreads) {
     const FrameStats a = one.step_frame(), b = two.step_frame();
     EXPECT_EQ(a.substeps, b.substeps);
     for (std::size_t k = 0; k < 3; ++k) {
-      const Mesh& ma = one.parts()[k]->scene().garments[0].mesh;
-      const Mesh& mb = two.parts()[k]->scene().garments[0].mesh;
+      const Mesh& ma = one.parts()[k]->garment_mesh(0);
+      const Mesh& mb = two.parts()[k]->garment_mesh(0);
       ASSERT_EQ(ma.num_nodes(), mb.num_nodes());
       for (NodeId n : ma.nodes()) ASSERT_EQ(ma.x(n), mb.x(n)) << "part " << k << ", frame " << f + 1;
     }
   }
   // The sheets did fall: the test compares moving states, not the initial ones.
-  const Mesh& finest = one.parts()[2]->scene().garments[0].mesh;
+  const Mesh& finest = one.parts()[2]->garment_mesh(0);
   double lowest = 0;
   for (NodeId n : finest.nodes()) lowest = std::min(lowest, finest.x(n).y());
   EXPECT_LT(lowest, -0.01);
@@ -70,8 +70,8 @@ TEST(Ensemble, GroupsKeptAloneStepAsInTheWholeScene) {
     whole.step_frame();
     share.step_frame();
     for (const auto& [k, w] : same) {
-      const Mesh& ms = share.parts()[k]->scene().garments[0].mesh;
-      const Mesh& mw = whole.parts()[w]->scene().garments[0].mesh;
+      const Mesh& ms = share.parts()[k]->garment_mesh(0);
+      const Mesh& mw = whole.parts()[w]->garment_mesh(0);
       ASSERT_EQ(ms.num_nodes(), mw.num_nodes()) << "part " << w << ", frame " << f + 1;
       ASSERT_EQ(ms.num_faces(), mw.num_faces()) << "part " << w << ", frame " << f + 1;
       for (NodeId n : ms.nodes()) ASSERT_EQ(ms.x(n), mw.x(n)) << "part " << w << ", frame " << f + 1;
