@@ -50,6 +50,7 @@ const char* kMainHelp =
 const char* kRunHelp =
     "usage: vdcloth run SCENE.json [--mode fixed|adaptive|view] [--frames N] [--out DIR] [--threads N]\n"
     "                  [--mesh-every N] [--checkpoint-every N] [--resume] [--group NAME]... [--perturb E]\n"
+    "                  [--perturb-resolution E]\n"
     "\n"
     "Simulates SCENE.json and writes DIR/stats.csv (one row a frame), DIR/frames/ (one OBJ per garment\n"
     "and obstacle per frame: cloth_<name>.<frame>.obj, obstacle_<name>.<frame>.obj, frame 0000 is the\n"
@@ -73,11 +74,21 @@ const char* kRunHelp =
     "  --perturb E   gravity times (1 + E), |E| at most 1e-3 (default: 0): with 1e-6, a run that\n"
     "                differs from the unperturbed one only by the growth of a perturbation below any\n"
     "                physical meaning, the chaos floor's reference for `vdcloth fidelity --floor`\n"
+    "  --perturb-resolution E  adaptive and view modes: the remesher lets every edge be 1 + E times as\n"
+    "                long as its criteria ask, |E| at most 0.1 (default: 0). With 0.01, a mesh the\n"
+    "                adaptive method could as well have made (whether it collapses an edge already\n"
+    "                depends on history across 20% of squared length): the resolution floor, the\n"
+    "                fair reference for `vdcloth fidelity --floor` when the run measured has another\n"
+    "                mesh, as a view run has\n"
     "  --help        this text\n";
 
 // --perturb's bound: a thousandth of gravity is still far below what a scene's author would
 // notice, and a larger change is a different scene, not a perturbation.
 constexpr double kMaxPerturbation = 1e-3;
+// --perturb-resolution's bound: a tenth of every edge's length is about the remesher's own
+// hysteresis (remesher.hpp, collapse_margin 0.2 of the squared length); beyond it, another
+// resolution.
+constexpr double kMaxResolutionPerturbation = 0.1;
 
 // A number as the user would write it (1e-06).
 std::string number_text(double x) {
@@ -96,7 +107,7 @@ struct RunArgs {
   int checkpoint_every = 10;  // checkpoint at frames that are multiples of this, and the last; 0: none
   bool resume = false;
   std::vector<std::string> groups;  // --group: simulate only these garment groups
-  double perturbation = 0;  // --perturb: gravity times (1 + perturbation)
+  Perturbation perturbation;  // --perturb and --perturb-resolution
 };
 
 }  // namespace
@@ -162,7 +173,9 @@ RunArgs parse_run_args(const std::vector<std::string>& args) {
     } else if (a == "--group") {
       r.groups.push_back(value());
     } else if (a == "--perturb") {
-      r.perturbation = parse_number(a, value(), -kMaxPerturbation, kMaxPerturbation);
+      r.perturbation.gravity = parse_number(a, value(), -kMaxPerturbation, kMaxPerturbation);
+    } else if (a == "--perturb-resolution") {
+      r.perturbation.resolution = parse_number(a, value(), -kMaxResolutionPerturbation, kMaxResolutionPerturbation);
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "'");
     } else if (r.scene.empty()) {
@@ -198,9 +211,13 @@ Checkpoint checkpoint_to_resume(const RunArgs& args, const std::string& dir, uin
     throw InputError(path, "", "written by another build of vdcloth, which may simulate differently: run without --resume to start again");
   if (c.mode != sim_mode_name(args.mode))
     throw UsageError("--resume: the run in " + dir + " is in " + c.mode + " mode, not " + sim_mode_name(args.mode));
-  if (c.perturbation != args.perturbation)
-    throw UsageError("--resume: the run in " + dir + " was made with --perturb " + number_text(c.perturbation) + ", not " +
-                     number_text(args.perturbation) + "; resume it with --perturb " + number_text(c.perturbation));
+  if (c.perturbation.gravity != args.perturbation.gravity)
+    throw UsageError("--resume: the run in " + dir + " was made with --perturb " + number_text(c.perturbation.gravity) + ", not " +
+                     number_text(args.perturbation.gravity) + "; resume it with --perturb " + number_text(c.perturbation.gravity));
+  if (c.perturbation.resolution != args.perturbation.resolution)
+    throw UsageError("--resume: the run in " + dir + " was made with --perturb-resolution " + number_text(c.perturbation.resolution) +
+                     ", not " + number_text(args.perturbation.resolution) + "; resume it with --perturb-resolution " +
+                     number_text(c.perturbation.resolution));
   if (c.checkpoint_every != args.checkpoint_every)
     throw UsageError("--resume: the run in " + dir + " was checkpointed every " + std::to_string(c.checkpoint_every) +
                      " frames; resume it with --checkpoint-every " + std::to_string(c.checkpoint_every) +
@@ -218,7 +235,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     }
   }
   if (args.frames) scene.frames = *args.frames;
-  scene.gravity *= 1 + args.perturbation;
+  apply_perturbation(scene, args.perturbation);
   const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   const std::string dir = args.out.empty() ? "out/" + scene.name : args.out;
   const int frames = scene.frames;
@@ -259,7 +276,8 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   if (args.mesh_every > 0 && !resume) output.write_frame(sim, 0);
   out << "vdcloth: " << sim.name() << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", " << threads
       << " thread(s), " << sim.num_faces() << " faces, output " << dir;
-  if (args.perturbation != 0) out << ", gravity perturbed by " << number_text(args.perturbation);
+  if (args.perturbation.gravity != 0) out << ", gravity perturbed by " << number_text(args.perturbation.gravity);
+  if (args.perturbation.resolution != 0) out << ", resolution perturbed by " << number_text(args.perturbation.resolution);
   if (resume) out << ", resumed at frame " << first;
   out << std::endl;
 

@@ -17,7 +17,7 @@ namespace vdc {
 
 namespace {
 const std::string kMagic = "vdcloth checkpoint";
-constexpr uint32_t kFormat = 3;
+constexpr uint32_t kFormat = 4;
 
 // Calls take(data, n) on each block of a file in turn.
 template <class Take>
@@ -56,7 +56,8 @@ void write_checkpoint(const std::string& path, const Ensemble& run, const Checkp
   out.value(c.scene_hash);
   out.value(c.build_hash);
   out.value<int32_t>(c.checkpoint_every);
-  out.value(c.perturbation);
+  out.value(c.perturbation.gravity);
+  out.value(c.perturbation.resolution);
   out.string(sim_mode_name(run.options().mode));
   out.value<int32_t>(run.frame());
   out.value<int32_t>(c.segments);
@@ -108,7 +109,8 @@ Checkpoint read_checkpoint(const std::string& path) {
     c.scene_hash = in.value<uint64_t>();
     c.build_hash = in.value<uint64_t>();
     c.checkpoint_every = in.value<int32_t>();
-    c.perturbation = in.value<double>();
+    c.perturbation.gravity = in.value<double>();
+    c.perturbation.resolution = in.value<double>();
     c.mode = in.string();
     c.frame = in.value<int32_t>();
     c.segments = in.value<int32_t>();
@@ -117,9 +119,11 @@ Checkpoint read_checkpoint(const std::string& path) {
     c.usage.peak_kib = static_cast<long>(in.value<int64_t>());
     c.usage.machine.total = in.value<int64_t>();
     c.usage.machine.steal = in.value<int64_t>();
-    if (c.frame < 0 || c.segments < 1 || c.segments > 1'000'000 || c.checkpoint_every < 1 || !std::isfinite(c.perturbation))
+    if (c.frame < 0 || c.segments < 1 || c.segments > 1'000'000 || c.checkpoint_every < 1 || !std::isfinite(c.perturbation.gravity) ||
+        !std::isfinite(c.perturbation.resolution))
       in.fail("frame " + std::to_string(c.frame) + ", segment " + std::to_string(c.segments) + ", interval " +
-              std::to_string(c.checkpoint_every) + ", perturbation " + std::to_string(c.perturbation) + ": not a checkpoint's");
+              std::to_string(c.checkpoint_every) + ", perturbations " + std::to_string(c.perturbation.gravity) + " and " +
+              std::to_string(c.perturbation.resolution) + ": not a checkpoint's");
     const auto parts = in.value<uint64_t>();
     for (uint64_t p = 0; p < parts; ++p) {
       ResumePoint point;

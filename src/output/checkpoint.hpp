@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/resource_usage.hpp"
+#include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
 
 namespace vdc {
@@ -17,7 +18,7 @@ struct Checkpoint {
   uint64_t scene_hash = 0;  // file_hash of the scene file the run was made from
   uint64_t build_hash = 0;  // executable_hash of the vdcloth that wrote it
   int checkpoint_every = 0; // the run's interval: the solvers restart at each checkpoint
-  double perturbation = 0;  // vdcloth run --perturb: gravity times (1 + perturbation)
+  Perturbation perturbation;  // vdcloth run --perturb and --perturb-resolution
   std::string mode;         // sim_mode_name
   int frame = 0;
   int segments = 1;         // processes the run has been made in, this one included

@@ -173,7 +173,7 @@ bool run_is_done(const std::string& dir, int frames) {
 }
 
 void RunOutput::write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
-                              int segments, int frames_done, int threads, double perturbation) const {
+                              int segments, int frames_done, int threads, const Perturbation& perturbation) const {
   nlohmann::json j;
   const Scene& scene = run.parts().front()->scene();
   j["scene"] = run.path();
@@ -187,7 +187,8 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   j["frame_time"] = scene.frame_time;
   j["substeps"] = scene.substeps;
   j["linear_solver"] = linear_solver_name(scene.solver.linear);
-  j["perturbation"] = perturbation;
+  j["perturbation"] = perturbation.gravity;
+  j["resolution_perturbation"] = perturbation.resolution;
   j["total_seconds"] = usage.wall_seconds;
   j["segments"] = segments;
   j["cpu_seconds"] = usage.cpu_seconds;

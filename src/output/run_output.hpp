@@ -32,9 +32,9 @@ class RunOutput {
   void write_frame(const Ensemble& run, int frame) const;  // meshes of every garment and obstacle
   void write_stats_row(const FrameStats& s);
   // status: "done" or "failed"; error: message when failed. `usage` covers all `segments`
-  // processes the run was made in; `perturbation`: gravity was multiplied by 1 + it.
+  // processes the run was made in; `perturbation`: what the scene was perturbed by.
   void write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
-                     int segments, int frames_done, int threads, double perturbation) const;
+                     int segments, int frames_done, int threads, const Perturbation& perturbation) const;
   const std::string& dir() const { return dir_; }
 
  private:

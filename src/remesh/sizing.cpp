@@ -160,6 +160,7 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
       area += a;
     }
     vert[v] = area > 0 ? Mat2(sum / area) : Mat2::Zero();
+    if (p.resolution_scale != 1.0) vert[v] /= p.resolution_scale * p.resolution_scale;
   }
 }
 

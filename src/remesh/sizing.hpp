@@ -15,6 +15,10 @@ struct SizingParams {
   double size_min = 0.01;             // m
   double size_max = 0.2;              // m
   double aspect_min = 0.2;            // smallest ratio of the short to the long axis of a face
+  // Not a scene key: `vdcloth run --perturb-resolution E` sets it to 1 + E. Every vert's tensor
+  // is divided by its square, so the remesher lets every edge be this many times as long as
+  // the criteria ask (a perturbation of the discretisation, as --perturb is of the physics).
+  double resolution_scale = 1.0;
 };
 
 // The obstacle point nearest to a node and the unit direction from it to the node (zero
@@ -71,7 +75,8 @@ Mat2 tensor_max(const Mat2& a, const Mat2& b);
 double metric_ratio(const Mat2& m, const Mat2& in);
 
 // Computes face tensors (kFaceSizingAttr), lets `modifier` change them (then also writing
-// kCoarseningAttr), and averages them onto verts by material area (kSizingAttr, read by remesh()).
+// kCoarseningAttr), and averages them onto verts by material area (kSizingAttr, read by remesh()),
+// divided there by p.resolution_scale^2.
 void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier = nullptr,
                     const std::vector<ObstaclePlane>& planes = {});
 

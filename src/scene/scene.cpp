@@ -528,6 +528,11 @@ std::vector<std::string> garment_groups(const std::vector<GarmentSpec>& garments
 
 }  // namespace
 
+void apply_perturbation(Scene& scene, const Perturbation& p) {
+  scene.gravity *= 1 + p.gravity;
+  scene.remeshing.resolution_scale *= 1 + p.resolution;
+}
+
 std::vector<Scene> split_groups(Scene scene) {
   std::vector<GarmentSpec> garments = std::move(scene.garments);
   std::vector<ObstacleSpec> obstacles = std::move(scene.obstacles);

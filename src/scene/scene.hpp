@@ -78,6 +78,16 @@ struct Scene {
   ViewParams view;                   // the `view` block
 };
 
+// Changes below any meaning a scene's author gives them (`vdcloth run --perturb` and
+// `--perturb-resolution`): a run made with one differs from the unperturbed run only by how the
+// change grows, the chaos floors `vdcloth fidelity --floor` measures against.
+struct Perturbation {
+  double gravity = 0;     // gravity times (1 + gravity)
+  double resolution = 0;  // the remesher lets every edge be (1 + resolution) times as long
+  bool operator==(const Perturbation&) const = default;
+};
+void apply_perturbation(Scene& scene, const Perturbation& p);
+
 // Reads and checks a scene and everything it references. Throws InputError naming the file, the
 // key path (e.g. garments[0].material) and the problem.
 Scene load_scene(const std::string& path);

@@ -787,5 +787,39 @@ TEST_F(CliTest, PerturbChangesTheRunAndAResumptionMustKeepIt) {
   EXPECT_NE(out_.str().find("--perturb E"), std::string::npos) << out_.str();
 }
 
+// Every edge allowed 5% longer: the same start, another remeshed first frame. Sizes fixed at
+// 24 cm refine the unit sheet to a grid of 12.5 cm (128 faces: 25 cm edges are too long); 5%
+// longer, 25.2 cm, keeps the grid of 25 cm (64 faces). Like --perturb, in summary.json and the
+// checkpoint, and a resumption must keep it.
+TEST_F(CliTest, PerturbResolutionChangesTheMeshAndAResumptionMustKeepIt) {
+  const std::string path = write("scene.json", R"({"frames": 2, "substeps": 2, "remeshing": {"size": [0.24, 0.24]},
+    "garments": [{"name": "s", "mesh": "sheet.obj", "material": "cotton.json", "handles": [{"uv": [[0, 1], [1, 1]]}]}]})");
+  const fs::path plain = dir_ / "plain", coarser = dir_ / "coarser";
+  const std::vector<std::string> adaptive{"--mode", "adaptive", "--threads", "1"};
+  auto with = [&](std::vector<std::string> args) {
+    args.insert(args.end(), adaptive.begin(), adaptive.end());
+    return run(args);
+  };
+  ASSERT_EQ(with({"run", path, "--out", plain.string(), "--frames", "2"}), kExitOk) << err_.str();
+  ASSERT_EQ(with({"run", path, "--out", coarser.string(), "--frames", "1", "--perturb-resolution", "0.05"}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find("resolution perturbed by 0.05"), std::string::npos) << out_.str();
+  EXPECT_EQ(with({"run", path, "--out", coarser.string(), "--frames", "2", "--resume"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("made with --perturb-resolution 0.05, not 0; resume it with --perturb-resolution 0.05"), std::string::npos)
+      << err_.str();
+  ASSERT_EQ(with({"run", path, "--out", coarser.string(), "--frames", "2", "--resume", "--perturb-resolution", "0.05"}), kExitOk)
+      << err_.str();
+  EXPECT_EQ(read_file(coarser / "frames" / "cloth_s.0000.obj"), read_file(plain / "frames" / "cloth_s.0000.obj"));
+  for (int frame = 1; frame <= 2; ++frame) {
+    EXPECT_EQ(stats_column(plain / "stats.csv", "faces", frame), 128) << frame;
+    EXPECT_EQ(stats_column(coarser / "stats.csv", "faces", frame), 64) << frame;
+  }
+  const auto summary = nlohmann::json::parse(std::ifstream(coarser / "summary.json"));
+  EXPECT_EQ(summary["resolution_perturbation"].get<double>(), 0.05);
+  EXPECT_EQ(summary["perturbation"].get<double>(), 0.0);
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(plain / "summary.json"))["resolution_perturbation"].get<double>(), 0.0);
+  EXPECT_EQ(run({"run", "--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("--perturb-resolution E"), std::string::npos) << out_.str();
+}
+
 }  // namespace
 }  // namespace vdc

@@ -175,6 +175,23 @@ TEST(Sizing, VertsAverageTheirFacesByArea) {
   EXPECT_GT(std::abs(weighted - plain_mean / total), 1.0);
 }
 
+// --perturb-resolution: every vert's tensor divided by (1 + E)^2, so an edge of metric length
+// exactly 1 before is 1 / (1 + E) after: the remesher lets it be 1 + E times as long.
+TEST(Sizing, ResolutionScaleLetsEveryEdgeBeThatManyTimesAsLong) {
+  Mesh mesh = build_mesh(make_grid(1, 1, 2, 2));
+  const PerFaceModifier modifier;  // faces of unequal tensors
+  SizingParams p;
+  compute_sizing(mesh, p, &modifier);
+  const std::vector<Mat2> plain = mesh.vert_attrs().get<Mat2>(kSizingAttr).raw();
+  p.resolution_scale = 1.01;
+  compute_sizing(mesh, p, &modifier);
+  const auto& scaled = mesh.vert_attrs().get<Mat2>(kSizingAttr);
+  for (VertId v : mesh.verts()) {
+    const Mat2& before = plain[static_cast<std::size_t>(v.idx)];
+    EXPECT_LT((scaled[v] * 1.0201 - before).norm(), 1e-12 * before.norm()) << "vert " << v.idx;
+  }
+}
+
 TEST(Sizing, ObstacleMetricResolvesTheGapAlongTheSlope) {
   // One face, material (0,0), (0.1,0), (0,0.1) placed at (u, 0.01 + 0.5 u, v): its height over the
   // plane y = 0 grows at 0.5 per metre along u and not at all along v.
