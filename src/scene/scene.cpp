@@ -1,11 +1,14 @@
 #include "scene/scene.hpp"
 
+#include "scene/joint_names.hpp"
+
 #include <algorithm>
 #include <iomanip>
 #include <sstream>
 #include <optional>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <set>
 #include <stdexcept>
 
@@ -18,6 +21,7 @@
 #include "scene/body.hpp"
 #include "scene/bvh_motion.hpp"
 #include "scene/garments.hpp"
+#include "scene/joint_names.hpp"
 #include "scene/material_file.hpp"
 #include "scene/obj_sequence.hpp"
 #include "scene/transform.hpp"
@@ -255,6 +259,28 @@ GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
   return g;
 }
 
+// Why find_joint found no `joint`: the names tried and the first of the motion's joints.
+std::string missing_joint(const Skeleton& skeleton, const std::string& joint) {
+  std::string msg = "the motion has no joint '" + joint + "'";
+  const std::vector<std::string> aliases = joint_aliases(joint);
+  if (!aliases.empty()) {
+    msg += " (nor";
+    for (std::size_t k = 0; k < aliases.size(); ++k) msg += (k ? ", " : " ") + aliases[k];
+    msg += ")";
+  }
+  msg += "; its joints:";
+  std::size_t listed = 0;
+  for (const Joint& j : skeleton.joints) {
+    if (j.end_site) continue;
+    if (listed == 8) {
+      msg += " ...";
+      break;
+    }
+    msg += (listed++ ? ", " : " ") + j.name;
+  }
+  return msg + " (a character's joint_names renames a capture's joints)";
+}
+
 ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time) {
   j.only_keys({"name", "group", "mesh", "character", "transform", "motion"});
   ObstacleSpec o;
@@ -263,11 +289,24 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
   if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
   if (auto c = j.find("character")) {
     // The character places itself (its transform applies to the skinned body every frame).
-    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter"});
+    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter", "joint_names"});
     const JsonValue file = c->at("motion");
     const std::string path = resolve(file, scene_path);
     Motion motion = with_key(file, [&] { return read_bvh(path); });
     if (motion.frames.empty()) file.fail("the motion has no frames");
+    if (auto names = c->find("joint_names")) {
+      std::map<std::string, std::string> renames;
+      for (const auto& [from, to] : names->members()) {
+        const std::string name = to.string();
+        if (name.empty()) to.fail("a joint's new name must not be empty");
+        renames[from] = name;
+      }
+      try {
+        rename_joints(motion.skeleton, renames);
+      } catch (const std::invalid_argument& e) {
+        names->fail(std::string("the motion has no joint '") + e.what() + "' to rename");
+      }
+    }
     const double scale = c->positive_or("scale", 1.0);
     scale_lengths(motion, scale);
     check_figure_size(motion, scale, c->has("scale") ? c->at("scale") : file);
@@ -497,12 +536,12 @@ Scene load_scene(const std::string& path) {
       if (o == s.obstacles.end()) attach->at("obstacle").fail("no obstacle named '" + obstacle + "'");
       if (!o->character) attach->at("obstacle").fail("'" + obstacle + "' is not a character");
       if (o->group != s.garments[gi].group) attach->at("obstacle").fail("'" + obstacle + "' is in another group than the garment");
-      const auto& joints = o->character->motion().skeleton.joints;
-      const auto it = std::find_if(joints.begin(), joints.end(), [&](const Joint& x) { return x.name == joint; });
-      if (it == joints.end()) attach->at("joint").fail("the motion has no joint '" + joint + "'");
+      const Skeleton& skeleton = o->character->motion().skeleton;
+      const std::optional<int> found = find_joint(skeleton, joint);
+      if (!found) attach->at("joint").fail(missing_joint(skeleton, joint));
       ClothHandle& handle = s.garments[gi].handles[hi];
       handle.character = o->character;
-      handle.joint = static_cast<int>(it - joints.begin());
+      handle.joint = *found;
       handle.from_start = handle.character->joint_transform(handle.joint, 0.0).inverse();
     }
   }

@@ -2,6 +2,7 @@
 // motion from its start time, and refused when an obstacle names both a mesh and a character.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -144,6 +145,70 @@ TEST(Character, ACaptureStartsWhereTheSceneStandsItUnlessAskedNotTo) {
     EXPECT_LT(back, 1e-9) << t;     // the file's values are rounded when written
     EXPECT_LT(away_by, 1e-9) << t;
   }
+}
+
+// A capture of another naming scheme: Mixamo's names (a namespace before the project's) make
+// the same body and attach to the same joint; names of no scheme make another body until the
+// scene's joint_names renames them.
+TEST(Character, JointsOfOtherNamingSchemesAreFoundOrRenamedByTheScene) {
+  const std::string motion = std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh";
+  auto scene_with = [](const std::string& file, const std::string& joint, const std::string& extra = "") {
+    const fs::path dir = fs::temp_directory_path() / ("vdcloth_character_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "scene.json") << R"({"garments": [{"name": "s", "mesh": {"grid": {"size": [1, 1], "cells": [1, 1]}},
+      "material": {"density": 0.1, "stretch": {"warp": 100, "weft": 100, "shear": 10}, "bending": 1e-6},
+      "handles": [{"box": [[-9, -9, -9], [9, 9, 9]], "attach": {"obstacle": "d", "joint": ")" + joint + R"("}}]}],
+      "obstacles": [{"name": "d", "character": {"motion": ")" + file + R"(", "resolution": 0.05)" + extra + "}}]}";
+    return load_scene((dir / "scene.json").string());
+  };
+  const Scene own = scene_with(motion, "Hips");
+  const fs::path dir = fs::path(own.path).parent_path();
+  const Motion original = read_bvh(motion);
+  auto renamed = [&](const std::string& file, auto rename) {
+    Motion m = original;
+    for (Joint& j : m.skeleton.joints)
+      if (!j.end_site) j.name = rename(j.name);
+    EXPECT_TRUE(write_bvh(m, (dir / file).string()));
+  };
+  renamed("mixamo.bvh", [](const std::string& n) { return "mixamorig:" + n; });
+  renamed("other.bvh", [](const std::string& n) { return n == "Hips" ? std::string("pelvis_ctrl") : n == "LeftUpLeg" ? std::string("leg_upper_l") : n; });
+  const Scene mixamo = scene_with("mixamo.bvh", "Hips");
+  const Scene chest = scene_with("mixamo.bvh", "Chest");
+  const Scene other = scene_with("other.bvh", "Hips", R"(, "joint_names": {"pelvis_ctrl": "Hips", "leg_upper_l": "LeftUpLeg"})");
+  const Scene unmapped = scene_with("other.bvh", "pelvis_ctrl");
+  EXPECT_THROW(scene_with("other.bvh", "Hips"), InputError);
+  try {
+    scene_with("other.bvh", "Hips", R"(, "joint_names": {"LeftArm_x": "LeftArm"})");
+    ADD_FAILURE() << "a rename of a joint the motion does not have was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("joint_names: the motion has no joint 'LeftArm_x' to rename"), std::string::npos) << e.what();
+  }
+  try {
+    scene_with(motion, "Tail");
+    ADD_FAILURE() << "a missing joint was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the motion has no joint 'Tail'; its joints: Hips"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+  const auto& joints = original.skeleton.joints;
+  auto index = [&](const std::string& name) {
+    return static_cast<int>(std::find_if(joints.begin(), joints.end(), [&](const Joint& j) { return j.name == name; }) - joints.begin());
+  };
+  EXPECT_EQ(own.garments[0].handles[0].joint, index("Hips"));
+  EXPECT_EQ(mixamo.garments[0].handles[0].joint, index("Hips"));
+  EXPECT_EQ(chest.garments[0].handles[0].joint, index("Chest"));
+  EXPECT_EQ(other.garments[0].handles[0].joint, index("Hips"));
+  const std::vector<Vec3> a = own.obstacles[0].positions_at(1.0);
+  auto same_body = [&](const Scene& s) {
+    const std::vector<Vec3> b = s.obstacles[0].positions_at(1.0);
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if ((a[i] - b[i]).norm() > 1e-9) return false;  // the file's values are rounded when written
+    return true;
+  };
+  EXPECT_TRUE(same_body(mixamo));
+  EXPECT_TRUE(same_body(other));
+  EXPECT_FALSE(same_body(unmapped));  // leg_upper_l is thinner than a thigh: a leg's radii
 }
 
 }  // namespace
