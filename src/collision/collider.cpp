@@ -3,6 +3,7 @@
 #include "collision/collider.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <optional>
 
 #include "collision/candidates.hpp"
@@ -160,6 +161,10 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   ImpactZones zones(num_nodes_);
   std::vector<char> moved(static_cast<std::size_t>(num_nodes_), 1);
   bool clear = false;
+  // The work bound of a round: candidates are counted as met (the count, and so whether it is
+  // over, does not depend on the threads); past the bound none is tested any more.
+  const int64_t budget = static_cast<int64_t>(params.max_candidates_per_primitive) *
+                         static_cast<int64_t>(num_nodes_ + static_cast<int32_t>(cloth_edges_.size()));
 
   for (int round = 0; round < params.max_iterations && !clear; ++round) {
     ++stats.iterations;
@@ -186,10 +191,14 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       return PointPath{p0(p), p1(p), movable ? p.index : -1};
     };
     using Hits = std::vector<ImpactConstraint>;
+    std::atomic<int64_t> met{0};
+    auto within_budget = [&] { return met.fetch_add(1, std::memory_order_relaxed) < budget; };
     auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri, Hits& out) {
+      if (!within_budget()) return;
       if (auto hit = vertex_face_impact(path(p), path(tri[0]), path(tri[1]), path(tri[2]), eta)) out.push_back(*hit);
     };
     auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, Hits& out) {
+      if (!within_budget()) return;
       if (auto hit = edge_edge_impact(path(a), path(b), path(c), path(d), eta)) out.push_back(*hit);
     };
 
@@ -230,6 +239,16 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
           const auto oi = static_cast<int32_t>(o);
           ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
         });
+    stats.candidates = std::max(stats.candidates, met.load());
+    if (met.load() > budget) {
+      // Too far a motion to detect in this step: every cloth node not held keeps its start
+      // position, a step in which the cloth stands still (the step's recovery first halves it).
+      stats.over_budget = true;
+      stats.fallbacks += 1;
+      for (int32_t n = 0; n < num_nodes_; ++n)
+        if (!fixed[static_cast<std::size_t>(n)]) x_end.segment<3>(3 * n) = x_start.segment<3>(3 * n);
+      return stats;
+    }
     std::vector<ImpactConstraint> found;
     for (const auto& list : vertex_hits) found.insert(found.end(), list.begin(), list.end());
     for (const auto& lists : obstacle_hits)

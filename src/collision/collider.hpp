@@ -24,6 +24,10 @@ struct CollisionParams {
   double repulsion_stiffness = 3.0;    // k h^2 / m of a pair: the share of a gap a step closes is k h^2 / (m + k h^2)
   double friction = 0.3;               // Coulomb coefficient of proximity pairs
   int max_iterations = 20;   // detection-projection rounds before the fallback
+  // Candidate pairs one detection round may test, per cloth primitive (node, edge): a step whose
+  // motions sweep boxes that meet more (cloth driven far in one step) stops detecting and falls
+  // back, rather than testing a number of pairs that grows as the square of the mesh.
+  int max_candidates_per_primitive = 400;
   int untangle_iterations = 100;  // passes of untangling (collision/untangle.hpp) after a remesh
   int threads = 1;           // for the detection tests (set by the simulation, not the scene)
 };
@@ -32,6 +36,8 @@ struct CollisionStats {
   int impacts = 0;     // impacts detected over all rounds
   int iterations = 0;  // detection rounds
   int fallbacks = 0;   // zones sent back to their start positions
+  int64_t candidates = 0;  // most candidate pairs met in one detection round
+  bool over_budget = false;  // a round met more than the bound: the step's cloth fell back whole
 };
 
 // A triangle soup that moves linearly over the step: cloth (global node indices into x) or an

@@ -32,6 +32,7 @@ void accumulate(FrameStats& t, const FrameStats& p) {
   t.collision_iterations += p.collision_iterations;
   t.collision_fallbacks += p.collision_fallbacks;
   t.velocity_clamps += p.velocity_clamps;
+  t.collision_candidates = std::max(t.collision_candidates, p.collision_candidates);
   t.collision_seconds += p.collision_seconds;
   t.energy.kinetic += p.energy.kinetic;
   t.energy.gravitational += p.energy.gravitational;

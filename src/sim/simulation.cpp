@@ -419,14 +419,15 @@ bool Simulation::take_step(const StepInterval& step, const StepRecoveryLimits& l
     // Impact zones that do not separate: first retry the step in halves (smaller motions meet
     // fewer impacts at once); at the last level the zones keep their start positions.
     const bool may_halve = zones_may_halve(step, limits);
-    const int fallbacks = resolve_collisions(x_start, h, fixed, obstacles, stats, !may_halve);
-    if (fallbacks == 0 || !may_halve) {
+    const CollisionStats c = resolve_collisions(x_start, h, fixed, obstacles, stats, !may_halve);
+    if (c.fallbacks == 0 || !may_halve) {
       ++stats.substeps;
       return true;
     }
     x_ = x_start;
     v_ = v_start;
-    r.failure = std::to_string(fallbacks) + " impact zone(s) did not separate";
+    r.failure = c.over_budget ? "continuous detection met " + std::to_string(c.candidates) + " candidate pairs in one round, over its bound"
+                              : std::to_string(c.fallbacks) + " impact zone(s) did not separate";
     next = after_failure(step, limits);
   }
   if (next == Recovery::Fail) {
@@ -467,7 +468,7 @@ std::vector<ContactTerm> Simulation::proximity_contacts(const std::vector<char>&
   return terms;
 }
 
-int Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed,
+CollisionStats Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed,
                                    const ObstacleMotion& obstacles, FrameStats& stats, bool last_resort) {
   auto t0 = std::chrono::steady_clock::now();
   CollisionParams params = scene_.collision;
@@ -476,17 +477,23 @@ int Simulation::resolve_collisions(const Eigen::VectorXd& x_start, double h, con
   v_ = (x_ - x_start) / h;
   stats.impacts += c.impacts;
   stats.collision_iterations += c.iterations;
+  stats.collision_candidates = std::max<long long>(stats.collision_candidates, c.candidates);
   if (last_resort) {
     stats.collision_fallbacks += c.fallbacks;
     if (c.fallbacks > 0 && log_) {
       std::ostringstream msg;
-      msg << "frame " << frame_ + 1 << ": " << c.fallbacks << " impact zone(s) did not separate in " << c.iterations
-          << " rounds at step " << h << " s; they keep their start-of-step positions, carried by the obstacles they touch";
+      msg << "frame " << frame_ + 1 << ": ";
+      if (c.over_budget)
+        msg << "continuous detection met " << c.candidates << " candidate pairs in one round at step " << h << " s, over its bound ("
+            << params.max_candidates_per_primitive << " a cloth node or edge): the cloth keeps its start-of-step positions";
+      else
+        msg << c.fallbacks << " impact zone(s) did not separate in " << c.iterations << " rounds at step " << h
+            << " s; they keep their start-of-step positions, carried by the obstacles they touch";
       log_(msg.str());
     }
   }
   stats.collision_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return c.fallbacks;
+  return c;
 }
 
 FrameStats Simulation::step_frame() {

@@ -56,6 +56,7 @@ struct FrameStats {
   double view_seconds = 0;
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
   int velocity_clamps = 0;  // steps whose velocity changes were clamped as a last resort
+  long long collision_candidates = 0;  // most candidate pairs met in one detection round
   double collision_seconds = 0;
   EnergyReport energy;
 };
@@ -138,8 +139,9 @@ class Simulation {
   std::vector<ContactTerm> proximity_contacts(const std::vector<char>& fixed, const ObstacleMotion& obstacles, double h,
                                               FrameStats& stats);
   // Continuous collision handling of the step that just moved x_ from x_start; velocities follow.
-  // Returns the zones that did not separate (counted as fallbacks when `last_resort`).
-  int resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed, const ObstacleMotion& obstacles,
+  // Returns what the collider did: zones that did not separate (counted as fallbacks when
+  // `last_resort`), or a detection over its work bound.
+  CollisionStats resolve_collisions(const Eigen::VectorXd& x_start, double h, const std::vector<char>& fixed, const ObstacleMotion& obstacles,
                          FrameStats& stats, bool last_resort);
   // Halvings a step may take to let impact zones separate before the zones are frozen.
   static constexpr int kCollisionHalvings = 2;

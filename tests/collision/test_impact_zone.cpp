@@ -151,5 +151,73 @@ TEST(Collider, AVertexThatCrossesAnObstacleEndsTheStepAtTheImpactSeparationOnIts
   EXPECT_EQ(x1.tail<6>(), x0.tail<6>());
 }
 
+// The work bound of a detection round. The step above meets 4 candidate pairs: corner 0 against
+// both floor triangles (its path box reaches y = 0), and the cloth edges 0-1 and 0-2 against the
+// floor's diagonal (the only floor edge whose box reaches z = -0.2 to 0.2); the corners up at
+// 0.5 m meet nothing. Six cloth primitives (3 nodes, 3 edges): a bound of 1 a primitive (6)
+// detects as before; 0 is over it, and every free node keeps its start position.
+TEST(Collider, ADetectionRoundOverItsCandidateBoundStopsAndTheClothKeepsItsStart) {
+  Collider collider({{0, 1, 2}}, {CollisionMesh{{{0, 2, 1}, {0, 3, 2}}}}, 3);
+  Eigen::VectorXd x0(9);
+  x0 << 0.3, 0.001, -0.2, 0.3, 0.5, 0.2, 0.5, 0.5, -0.2;
+  Eigen::VectorXd x1 = x0;
+  x1(1) = -0.01;
+  x1(4) = 0.45;  // a free corner moving too, kept at its start when over the bound
+  const std::vector<Vec3> floor{Vec3(-1, 0, -1), Vec3(1, 0, -1), Vec3(1, 0, 1), Vec3(-1, 0, 1)};
+  CollisionParams params;
+  params.thickness = 0.003;
+  params.impact_separation = 0.0003;
+  params.max_candidates_per_primitive = 1;
+  Eigen::VectorXd within = x1;
+  const CollisionStats ok = collider.resolve(x0, within, {0.01, 0.01, 0.01}, {0, 0, 0}, {floor}, {floor}, params);
+  EXPECT_EQ(ok.candidates, 4);
+  EXPECT_FALSE(ok.over_budget);
+  EXPECT_EQ(ok.fallbacks, 0);
+  EXPECT_NEAR(within(1), 0.0003, 1e-3 * params.thickness);
+  params.max_candidates_per_primitive = 0;
+  Eigen::VectorXd over = x1;
+  const CollisionStats stopped = collider.resolve(x0, over, {0.01, 0.01, 0.01}, {0, 0, 1}, {floor}, {floor}, params);
+  EXPECT_EQ(stopped.candidates, 4);
+  EXPECT_TRUE(stopped.over_budget);
+  EXPECT_EQ(stopped.fallbacks, 1);
+  EXPECT_EQ(stopped.impacts, 0);
+  EXPECT_EQ(over.head<6>(), x0.head<6>());    // free corners 0 and 1: their start
+  EXPECT_EQ(over.tail<3>(), x1.tail<3>());    // corner 2, held: where its handle took it
+}
+
+// The state that ran away: a sheet of 20 x 20 cells whose nodes scatter up to a metre in one step
+// meets pairs as the square of the sheet (every swept box meets most others). The default bound
+// (400 a node or edge) stops the first round, and the sheet keeps its start.
+TEST(Collider, ASheetScatteredInOneStepIsStoppedByTheBoundNotTestedPairByPair) {
+  const int n = 20;
+  std::vector<std::array<int32_t, 3>> faces;
+  Eigen::VectorXd x0(3 * (n + 1) * (n + 1));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) x0.segment<3>(3 * (j * (n + 1) + i)) = Vec3(0.05 * i, 0, 0.05 * j);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+      faces.push_back({a, b, c});
+      faces.push_back({a, c, d});
+    }
+  const auto nodes = static_cast<int32_t>(x0.size() / 3);
+  Collider collider(faces, {}, nodes);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1);
+  Eigen::VectorXd x1 = x0;
+  for (Eigen::Index k = 0; k < x1.size(); ++k) x1(k) += U(rng);
+  const Eigen::VectorXd scattered = x1;
+  const CollisionStats stats =
+      collider.resolve(x0, x1, std::vector<double>(static_cast<std::size_t>(nodes), 0.01), std::vector<char>(static_cast<std::size_t>(nodes), 0), {}, {},
+                       CollisionParams{});
+  // 441 nodes and 1,240 edges: a bound of 672,400 pairs, where the scattered sheet's swept boxes
+  // meet more (each of its 800 faces' boxes spans most of the sheet's).
+  EXPECT_TRUE(stats.over_budget);
+  EXPECT_GT(stats.candidates, 400LL * (441 + 1240));
+  EXPECT_EQ(stats.iterations, 1);
+  EXPECT_EQ(x1, x0);
+  EXPECT_NE(scattered, x0);
+}
+
 }  // namespace
 }  // namespace vdc
