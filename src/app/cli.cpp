@@ -75,11 +75,10 @@ const char* kRunHelp =
     "                differs from the unperturbed one only by the growth of a perturbation below any\n"
     "                physical meaning, the chaos floor's reference for `vdcloth fidelity --floor`\n"
     "  --perturb-resolution E  adaptive and view modes: the remesher lets every edge be 1 + E times as\n"
-    "                long as its criteria ask, |E| at most 0.1 (default: 0). With 0.01, a mesh the\n"
-    "                adaptive method could as well have made (whether it collapses an edge already\n"
-    "                depends on history across 20% of squared length): the resolution floor, the\n"
-    "                fair reference for `vdcloth fidelity --floor` when the run measured has another\n"
-    "                mesh, as a view run has\n"
+    "                long as its criteria ask, |E| at most 0.1 (default: 0): a mesh the adaptive\n"
+    "                method could as well have made (whether it collapses an edge already depends on\n"
+    "                history across 20% of squared length); as `vdcloth fidelity --floor`, how far\n"
+    "                a change of resolution alone moves the shot\n"
     "  --help        this text\n";
 
 // --perturb's bound: a thousandth of gravity is still far below what a scene's author would
