@@ -418,7 +418,7 @@ CameraPath parse_camera(const JsonValue& j) {
 
 // The `view` block: parameters of view-dependent sizing.
 ViewParams parse_view(const JsonValue& j) {
-  j.only_keys({"v_back", "v_out", "margin", "anticipation", "l_min", "l_max", "silhouette_threshold", "settle"});
+  j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "l_min", "l_max", "silhouette_threshold", "settle"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -426,6 +426,7 @@ ViewParams parse_view(const JsonValue& j) {
   if (p.v_out > p.v_back) j.at("v_out").fail("must be at most v_back");
   p.margin = j.positive_or("margin", p.margin);
   p.anticipation = j.non_negative_or("anticipation", p.anticipation);
+  p.lead = j.non_negative_or("lead", p.lead);
   p.l_min = j.non_negative_or("l_min", p.l_min);
   p.l_max = j.non_negative_or("l_max", p.l_max);
   if (p.l_max > 0 && p.l_max < p.l_min) j.at("l_max").fail("must be 0 (no ceiling) or at least l_min");

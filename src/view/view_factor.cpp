@@ -33,17 +33,17 @@ FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const V
 AnticipationWindow::AnticipationWindow(const CameraPath& path, double t, double frame_time, const ViewParams& p) {
   frusta.emplace_back(path.at(t));
   weights.push_back(1.0);
-  const double window = p.anticipation * frame_time;
+  const double ramp = p.anticipation * frame_time, lead = p.lead * frame_time, window = lead + ramp;
   if (window <= 0) return;
   std::vector<double> taus;
-  const int n = std::max(1, static_cast<int>(std::ceil(p.anticipation * p.samples_per_frame)));
-  for (int k = 1; k < n; ++k) taus.push_back(window * k / n);  // tau = T has weight 0
+  const int n = std::max(1, static_cast<int>(std::ceil((p.lead + p.anticipation) * p.samples_per_frame)));
+  for (int k = 1; k < n; ++k) taus.push_back(window * k / n);  // tau = L + T has weight 0
   for (double cut : path.cuts_in(t, t + window))
     if (cut < t + window) taus.push_back(cut - t);
   std::sort(taus.begin(), taus.end());
   for (double tau : taus) {
     frusta.emplace_back(path.at(t + tau));
-    weights.push_back(1 - tau / window);
+    weights.push_back(tau <= lead ? 1.0 : ramp > 0 ? 1 - (tau - lead) / ramp : 0.0);
   }
 }
 

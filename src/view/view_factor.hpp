@@ -20,6 +20,9 @@ struct ViewParams {
   double v_out = 0.01;                // factor of faces farther than the margin from the frustum
   double margin = 0.4;                // m: the fall-off from the frustum to v_out
   double anticipation = 5;            // frames: T, how far ahead the camera is looked at
+  // frames: cloth to be seen within this time is at the resolution it will be seen at (weight
+  // 1); the window's weights then fall over the `anticipation` frames after it (0: eq. 4)
+  double lead = 0;
   double l_min = 4;                   // pixels: shortest visible edge on screen (0: no floor)
   double l_max = 0;                   // pixels: longest visible edge on screen (0: no ceiling)
   double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling
@@ -37,9 +40,10 @@ struct FaceView {
 // Eq. 3 for the triangle (a, b, c), counter-clockwise seen from its outer side.
 FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p);
 
-// The camera over the anticipation window [t, t + T]: frusta at offsets tau, increasing, with
-// their weights w(tau) = 1 - tau / T; sampled `samples_per_frame` times a frame and at every
-// cut in the window (the first instant of the new shot), so a cut is never missed.
+// The camera over the anticipation window [t, t + L + T] (L the lead): frusta at offsets tau,
+// increasing, with their weights w(tau) = 1 up to L, then 1 - (tau - L) / T (eq. 4 when L = 0);
+// sampled `samples_per_frame` times a frame and at every cut in the window (the first instant of
+// the new shot), so a cut is never missed.
 struct AnticipationWindow {
   AnticipationWindow(const CameraPath& path, double t, double frame_time, const ViewParams& p);
   std::vector<Frustum> frusta;  // frusta[0] is the camera now
