@@ -90,6 +90,23 @@ TEST(ViewFactor, AnticipationRampsUpLinearlyBeforeACut) {
   }
 }
 
+// With a lead of 10 frames (0.4 s), a face seen after the cut is at 1 from 0.4 s before it, and
+// the ramp of 5 frames comes before that: 1 - (before - 0.4) / 0.2, down to v_out.
+TEST(ViewFactor, ALeadHoldsFullResolutionBeforeTheCutAndRampsBeforeThat) {
+  ViewParams p;
+  p.lead = 10;
+  const double frame = 0.04, lead = p.lead * frame, ramp = p.anticipation * frame, t0 = 2.0;
+  std::vector<CameraKey> keys{{0.0, Vec3(0, 0, 5), Vec3(0, 0, 10), false}, {t0, Vec3(0, 0, 5), Vec3(0, 0, 0), true},
+                              {t0 + 1, Vec3(0, 0, 5), Vec3(0, 0, 0), false}};
+  CameraPath path(front_camera(), keys);
+  const auto t = tri(Vec3::Zero());
+  for (double before : {0.0, 0.05, 0.2, 0.39, 0.4, 0.45, 0.5, 0.55, 0.6, 0.7, 1.0}) {
+    const double expected = before <= lead ? 1.0 : std::max(p.v_out, 1 - (before - lead) / ramp);
+    EXPECT_NEAR(anticipated_view_factor(AnticipationWindow(path, t0 - before, frame, p), t[0], t[1], t[2], p), expected, 1e-12)
+        << before << " s before the cut";
+  }
+}
+
 TEST(ViewFactor, SilhouetteResamplingRaisesOnlyTheLessVisibleSide) {
   // Three faces in a row: 0 | 1 | 2 sharing edges 0-1 and 1-2.
   Mesh m = build_mesh(make_grid(1, 1, 1, 1));  // two faces
