@@ -161,8 +161,10 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   ImpactZones zones(num_nodes_);
   std::vector<char> moved(static_cast<std::size_t>(num_nodes_), 1);
   bool clear = false;
-  // The work bound of a round: candidates are counted as met (the count, and so whether it is
-  // over, does not depend on the threads); past the bound none is tested any more.
+  // The work bound of a round: each query primitive counts the candidates it meets in its own
+  // slot (the round's total, and so whether it is over, does not depend on the threads), and
+  // adds them to a shared tally 64 at a time; once the tally, which never runs ahead of the
+  // total, is past the bound, no candidate is tested any more.
   const int64_t budget = static_cast<int64_t>(params.max_candidates_per_primitive) *
                          static_cast<int64_t>(num_nodes_ + static_cast<int32_t>(cloth_edges_.size()));
 
@@ -190,16 +192,22 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const bool movable = p.obstacle < 0 && !fixed[static_cast<std::size_t>(p.index)];
       return PointPath{p0(p), p1(p), movable ? p.index : -1};
     };
-    using Hits = std::vector<ImpactConstraint>;
-    std::atomic<int64_t> met{0};
-    auto within_budget = [&] { return met.fetch_add(1, std::memory_order_relaxed) < budget; };
+    struct Hits {
+      std::vector<ImpactConstraint> found;
+      int32_t met = 0;  // candidates met by this query primitive
+    };
+    std::atomic<int64_t> tally{0};
+    auto within_budget = [&](Hits& out) {
+      if ((++out.met & 63) == 0) tally.fetch_add(64, std::memory_order_relaxed);
+      return tally.load(std::memory_order_relaxed) <= budget;
+    };
     auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri, Hits& out) {
-      if (!within_budget()) return;
-      if (auto hit = vertex_face_impact(path(p), path(tri[0]), path(tri[1]), path(tri[2]), eta)) out.push_back(*hit);
+      if (!within_budget(out)) return;
+      if (auto hit = vertex_face_impact(path(p), path(tri[0]), path(tri[1]), path(tri[2]), eta)) out.found.push_back(*hit);
     };
     auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, Hits& out) {
-      if (!within_budget()) return;
-      if (auto hit = edge_edge_impact(path(a), path(b), path(c), path(d), eta)) out.push_back(*hit);
+      if (!within_budget(out)) return;
+      if (auto hit = edge_edge_impact(path(a), path(b), path(c), path(d), eta)) out.found.push_back(*hit);
     };
 
     // Cloth vertices against cloth and obstacle faces.
@@ -239,8 +247,13 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
           const auto oi = static_cast<int32_t>(o);
           ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
         });
-    stats.candidates = std::max(stats.candidates, met.load());
-    if (met.load() > budget) {
+    int64_t met = 0;
+    for (const Hits& h : vertex_hits) met += h.met;
+    for (const auto& per_obstacle : obstacle_hits)
+      for (const Hits& h : per_obstacle) met += h.met;
+    for (const Hits& h : edge_hits) met += h.met;
+    stats.candidates = std::max(stats.candidates, met);
+    if (met > budget) {
       // Too far a motion to detect in this step: every cloth node not held keeps its start
       // position, a step in which the cloth stands still (the step's recovery first halves it).
       stats.over_budget = true;
@@ -250,10 +263,10 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       return stats;
     }
     std::vector<ImpactConstraint> found;
-    for (const auto& list : vertex_hits) found.insert(found.end(), list.begin(), list.end());
-    for (const auto& lists : obstacle_hits)
-      for (const auto& list : lists) found.insert(found.end(), list.begin(), list.end());
-    for (const auto& list : edge_hits) found.insert(found.end(), list.begin(), list.end());
+    for (const Hits& h : vertex_hits) found.insert(found.end(), h.found.begin(), h.found.end());
+    for (const auto& per_obstacle : obstacle_hits)
+      for (const Hits& h : per_obstacle) found.insert(found.end(), h.found.begin(), h.found.end());
+    for (const Hits& h : edge_hits) found.insert(found.end(), h.found.begin(), h.found.end());
 
     stats.impacts += static_cast<int>(found.size());
     if (found.empty()) {
