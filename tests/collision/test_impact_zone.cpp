@@ -167,16 +167,19 @@ TEST(Collider, ADetectionRoundOverItsCandidateBoundStopsAndTheClothKeepsItsStart
   CollisionParams params;
   params.thickness = 0.003;
   params.impact_separation = 0.0003;
-  params.max_candidates_per_primitive = 1;
-  Eigen::VectorXd within = x1;
-  const CollisionStats ok = collider.resolve(x0, within, {0.01, 0.01, 0.01}, {0, 0, 0}, {floor}, {floor}, params);
+  // The step resolved at a bound of `per_primitive`, corner 2 held or not: its stats and end.
+  auto resolved = [&](int per_primitive, char hold_corner_2, Eigen::VectorXd& x_end) {
+    params.max_candidates_per_primitive = per_primitive;
+    x_end = x1;
+    return collider.resolve(x0, x_end, {0.01, 0.01, 0.01}, {0, 0, hold_corner_2}, {floor}, {floor}, params);
+  };
+  Eigen::VectorXd within, over;
+  const CollisionStats ok = resolved(1, 0, within);
   EXPECT_EQ(ok.candidates, 4);
   EXPECT_FALSE(ok.over_budget);
   EXPECT_EQ(ok.fallbacks, 0);
   EXPECT_NEAR(within(1), 0.0003, 1e-3 * params.thickness);
-  params.max_candidates_per_primitive = 0;
-  Eigen::VectorXd over = x1;
-  const CollisionStats stopped = collider.resolve(x0, over, {0.01, 0.01, 0.01}, {0, 0, 1}, {floor}, {floor}, params);
+  const CollisionStats stopped = resolved(0, 1, over);
   EXPECT_EQ(stopped.candidates, 4);
   EXPECT_TRUE(stopped.over_budget);
   EXPECT_EQ(stopped.fallbacks, 1);
