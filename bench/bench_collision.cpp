@@ -36,7 +36,7 @@ const DressedCharacter& dressed_character(int mode) {
   for (int f = 0; f < 20; ++f) sim.step_frame();
   auto d = std::make_unique<DressedCharacter>();
   const Scene& scene = sim.scene();
-  const Mesh& dress = scene.garments[0].mesh;
+  const Mesh& dress = sim.garment_mesh(0);
   d->num_nodes = dress.node_capacity();
   d->x = Eigen::VectorXd::Zero(3 * d->num_nodes);
   d->v = Eigen::VectorXd::Zero(3 * d->num_nodes);

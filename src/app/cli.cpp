@@ -271,13 +271,15 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   Ensemble sim = resume ? Ensemble(std::move(scene), options, log, std::move(resume->parts), dir + "/" + kCheckpointFile)
                         : Ensemble(std::move(scene), options, log);
   RunOutput output = resume ? RunOutput(dir, resume->frame) : RunOutput(dir);
-  const int first = sim.frame();
-  if (args.mesh_every > 0 && !resume) output.write_frame(sim, 0);
+  const bool prerolls = !resume && sim.frame() < 0;
+  const int preroll_frames = prerolls ? -sim.frame() : 0;
+  const int first = prerolls ? 0 : sim.frame();
   out << "vdcloth: " << sim.name() << ", " << frames << " frames, mode " << sim_mode_name(args.mode) << ", " << threads
       << " thread(s), " << sim.num_faces() << " faces, output " << dir;
   if (args.perturbation.gravity != 0) out << ", gravity perturbed by " << number_text(args.perturbation.gravity);
   if (args.perturbation.resolution != 0) out << ", resolution perturbed by " << number_text(args.perturbation.resolution);
   if (resume) out << ", resumed at frame " << first;
+  if (prerolls) out << ", " << preroll_frames << " frames of pre-roll first";
   out << std::endl;
 
   auto t0 = std::chrono::steady_clock::now();
@@ -297,6 +299,22 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     return kExitSimulationFailed;
   };
   try {
+    if (prerolls) {
+      // Before the shot, characters move from the pose their garments were made in into the
+      // shot's first pose; nothing of it is written (Scene::preroll_frames).
+      while (sim.frame() < 0) {
+        const FrameStats s = sim.step_frame();
+        std::ostringstream line;
+        line << "pre-roll frame " << s.frame << "  " << std::fixed << std::setprecision(3) << s.seconds << " s/frame  " << s.faces << " faces";
+        if (interactive) {
+          out << "\r" << line.str() << "   " << std::flush;
+          line_open = true;
+        } else {
+          out << line.str() << "\n" << std::flush;
+        }
+      }
+    }
+    if (args.mesh_every > 0 && !resume) output.write_frame(sim, 0);
     while (done < frames) {
       FrameStats s = sim.step_frame();
       if (args.mesh_every > 0 && s.frame % args.mesh_every == 0) output.write_frame(sim, s.frame);

@@ -1,5 +1,7 @@
 #include "output/run_output.hpp"
 
+#include <algorithm>
+
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -186,6 +188,7 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   j["frames"] = frames_done;
   j["frame_time"] = scene.frame_time;
   j["substeps"] = scene.substeps;
+  j["preroll_frames"] = scene.preroll_frames;
   j["linear_solver"] = linear_solver_name(scene.solver.linear);
   j["perturbation"] = perturbation.gravity;
   j["resolution_perturbation"] = perturbation.resolution;
@@ -201,9 +204,18 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
     for (std::size_t g = 0; g < part->scene().garments.size(); ++g) {
       const GarmentSpec& spec = part->scene().garments[g];
       const Mesh& mesh = part->garment_mesh(g);
-      garments.push_back({{"name", spec.name}, {"material", spec.material.name}, {"faces", mesh.num_faces()}, {"vertices", mesh.num_nodes()}});
+      nlohmann::json garment{{"name", spec.name}, {"material", spec.material.name}, {"faces", mesh.num_faces()}, {"vertices", mesh.num_nodes()}};
+      if (!spec.fitted_to.empty()) garment["fitted"] = {{"to", spec.fitted_to}, {"ease", spec.ease}};
+      garments.push_back(garment);
     }
   j["garments"] = garments;
+  // The characters as the run made them: their build, and how they come to their first pose.
+  nlohmann::json characters = nlohmann::json::array();
+  for (const auto& part : run.parts())
+    for (const ObstacleSpec& o : part->scene().obstacles)
+      if (o.character && std::none_of(characters.begin(), characters.end(), [&](const nlohmann::json& c) { return c["name"] == o.name; }))
+        characters.push_back({{"name", o.name}, {"build", o.character->body_params().build}, {"preroll", o.character->preroll()}});
+  j["characters"] = characters;
   std::ofstream out(dir_ + "/summary.json");
   out << j.dump(2) << "\n";
   if (!out) throw OutputError(dir_ + "/summary.json", "cannot write");

@@ -9,6 +9,7 @@
 
 #include "collision/distance.hpp"
 #include "core/isosurface.hpp"
+#include "scene/joint_names.hpp"
 
 namespace vdc {
 
@@ -64,7 +65,60 @@ double capsule(const Bone& bone, const Vec3& p) {
   return (p - (bone.a + t * ab)).norm() - ((1 - t) * bone.ra + t * bone.rb);
 }
 
+// The capsules of a skeleton's bones in a pose (world transforms of its joints), at `build`.
+std::vector<Bone> bones_in(const Skeleton& skeleton, const std::vector<Eigen::Isometry3d>& world, double build) {
+  std::vector<Bone> bones;
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
+    const int parent = skeleton.joints[j].parent;
+    if (parent < 0) continue;
+    auto [ra, rb] = limb_radii(skeleton.joints[static_cast<std::size_t>(parent)].name, skeleton.joints[j].name);
+    if (ra <= 0) continue;
+    Bone b{static_cast<int>(j), world[static_cast<std::size_t>(parent)].translation(), world[j].translation(), build * ra, build * rb};
+    if ((b.b - b.a).norm() < 1e-6) continue;
+    bones.push_back(b);
+  }
+  return bones;
+}
+
 }  // namespace
+
+double build_clearing_arms(const Motion& motion, const std::vector<Pose>& poses, double clearance) {
+  const Skeleton& skeleton = motion.skeleton;
+  std::vector<int> arms, shoulders_and_head;
+  for (const char* side : {"Left", "Right"}) {
+    const std::optional<int> arm = find_joint(skeleton, std::string(side) + "Arm");
+    if (!arm) return 1.0;
+    arms.push_back(*arm);
+    const std::optional<int> shoulder = find_joint(skeleton, std::string(side) + "Shoulder");
+    shoulders_and_head.push_back(shoulder ? *shoulder : *arm);
+  }
+  if (const std::optional<int> neck = find_joint(skeleton, "Neck")) shoulders_and_head.push_back(*neck);
+  // Per joint: 1 an arm's, 2 a shoulder's, the neck's or the head's, 0 the torso's or a leg's.
+  std::vector<int> part(skeleton.joints.size(), 0);
+  for (std::size_t j = 0; j < part.size(); ++j) {
+    for (int r : shoulders_and_head)
+      if (descends_from(skeleton, static_cast<int>(j), r)) part[j] = 2;
+    for (int r : arms)
+      if (descends_from(skeleton, static_cast<int>(j), r)) part[j] = 1;
+  }
+  double build = 1.0;
+  for (const Pose& pose : poses) {
+    const std::vector<Bone> bones = bones_in(skeleton, motion.world(pose), 1.0);
+    for (const Bone& arm : bones) {
+      // A bone moves with its owner, the parent of the joint it runs to.
+      if (part[static_cast<std::size_t>(skeleton.joints[static_cast<std::size_t>(arm.joint)].parent)] != 1) continue;
+      for (const Bone& body : bones) {
+        if (part[static_cast<std::size_t>(body.joint)] != 0) continue;  // a bone to a shoulder is the shoulder's
+        // Capsule surfaces at build k are k (ra + rb) apart less than their axes: k = (d - c) / r.
+        const Vec2 st = closest_segment_params(arm.a, arm.b, body.a, body.b);
+        const double d = ((arm.a + st.x() * (arm.b - arm.a)) - (body.a + st.y() * (body.b - body.a))).norm();
+        const double r = (1 - st.x()) * arm.ra + st.x() * arm.rb + (1 - st.y()) * body.ra + st.y() * body.rb;
+        build = std::min(build, (d - clearance) / r);
+      }
+    }
+  }
+  return std::max(build, kSlimmestBuild);
+}
 
 Pose Body::rest_pose(const Skeleton& s) {
   Pose p;
@@ -82,18 +136,10 @@ Body::Body(const Motion& motion, const BodyParams& params, MeshSource skin) : Bo
 Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin) : motion_(motion) {
   const auto& joints = motion.skeleton.joints;
   const std::vector<Eigen::Isometry3d> rest = motion.world(rest_pose(motion.skeleton));
-  std::vector<Bone> bones;
+  const std::vector<Bone> bones = bones_in(motion.skeleton, rest, params.build);
   Aabb box;
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    const int parent = joints[j].parent;
-    if (parent < 0) continue;
-    auto [ra, rb] = limb_radii(joints[static_cast<std::size_t>(parent)].name, joints[j].name);
-    if (ra <= 0) continue;
-    Bone b{static_cast<int>(j), rest[static_cast<std::size_t>(parent)].translation(), rest[j].translation(), params.build * ra, params.build * rb};
-    if ((b.b - b.a).norm() < 1e-6) continue;
-    bones.push_back(b);
+  for (const Bone& b : bones)
     for (const Vec3& p : {b.a, b.b}) box.grow(p);
-  }
   box.pad(0.2 * params.build + 2 * params.resolution);
   auto field = [&](const Vec3& p) {
     double d = 1e9;
@@ -131,6 +177,9 @@ Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin) : m
       const Vec3 local = frame.inverse() * x;
       influences_[v].push_back(Influence{joint, w / total, local, frame * local});
     }
+    main_joints_.push_back(std::max_element(influences_[v].begin(), influences_[v].end(), [](const Influence& a, const Influence& b) {
+                             return a.weight < b.weight;
+                           })->joint);
   }
 }
 

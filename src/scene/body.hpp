@@ -16,6 +16,16 @@ struct BodyParams {
   double blend = 0.04;       // m: smooth-minimum width at the joints
 };
 
+// The thinnest build build_clearing_arms chooses.
+inline constexpr double kSlimmestBuild = 0.6;
+
+// The largest build, at most 1 and at least kSlimmestBuild, at which the arms' capsules (from the
+// LeftArm and RightArm joints down, found by find_joint) keep `clearance` (m) from the torso's
+// and legs' (all but the shoulders', neck's and head's) in each of `poses`: a slender
+// capture's arms, hanging at its sides, would otherwise pass through a body made for the
+// project's figure, and no cloth could lie between. 1 for a skeleton without arms.
+double build_clearing_arms(const Motion& motion, const std::vector<Pose>& poses, double clearance);
+
 class Body {
  public:
   // The procedural body of the motion's skeleton in its rest pose (all rotations zero, offsets
@@ -27,6 +37,8 @@ class Body {
   const MeshSource& rest_mesh() const { return rest_; }
   // Vertex positions for a pose; at the rest pose, exactly the rest mesh.
   std::vector<Vec3> skin(const Pose& pose) const;
+  // Per vertex, the joint with the largest skinning weight (index into the skeleton).
+  const std::vector<int>& main_joints() const { return main_joints_; }
   // The rest pose of the motion's skeleton.
   static Pose rest_pose(const Skeleton& s);
 
@@ -41,6 +53,7 @@ class Body {
   const Motion& motion_;
   MeshSource rest_;
   std::vector<std::vector<Influence>> influences_;  // per vertex
+  std::vector<int> main_joints_;                    // per vertex
 };
 
 }  // namespace vdc

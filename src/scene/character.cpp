@@ -1,24 +1,33 @@
 // Animated character obstacles: skinned procedural bodies placed in the scene.
 #include "scene/character.hpp"
 
+#include "scene/dressing.hpp"
+
 namespace vdc {
 
 Character::Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed,
-                     std::optional<MeshSource> skin)
-    : motion_(std::make_unique<Motion>(std::move(motion))), placement_(placement) {
+                     std::optional<MeshSource> skin, Dressing dressing)
+    : motion_(std::make_unique<Motion>(std::move(motion))), placement_(placement), body_params_(body), preroll_(dressing.preroll) {
   body_ = skin ? std::make_unique<Body>(*motion_, body, std::move(*skin)) : std::make_unique<Body>(*motion_, body);
   clip_ = MotionClip{motion_.get(), start, speed};
+  dressing_ = dressing.pose ? *dressing.pose : Body::rest_pose(motion_->skeleton);
+}
+
+Pose Character::pose_at(double t) const {
+  if (t >= 0 || preroll_ <= 0) return clip_.pose_at(t);
+  if (t <= -preroll_) return dressing_;
+  return blend_poses(dressing_, clip_.pose_at(0.0), preroll_ease(1 + t / preroll_));
 }
 
 std::vector<Vec3> Character::positions_at(double t) const {
-  std::vector<Vec3> x = body_->skin(clip_.pose_at(t));
+  std::vector<Vec3> x = body_->skin(pose_at(t));
   const Mat3 r = placement_.rotation();
   for (Vec3& p : x) p = r * (placement_.scale * p) + placement_.translate;
   return x;
 }
 
 Eigen::Affine3d Character::joint_transform(int joint, double t) const {
-  const Eigen::Isometry3d w = motion_->world(clip_.pose_at(t))[static_cast<std::size_t>(joint)];
+  const Eigen::Isometry3d w = motion_->world(pose_at(t))[static_cast<std::size_t>(joint)];
   Eigen::Affine3d placed = Eigen::Affine3d::Identity();
   placed.linear() = placement_.rotation() * placement_.scale;
   placed.translation() = placement_.translate;

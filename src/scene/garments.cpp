@@ -59,6 +59,24 @@ class Sewing {
   MeshSource src_;
 };
 
+// Rows of about `cell` over a length, at least `least`.
+int rows_for(double length, double cell, int least) { return std::max(least, static_cast<int>(std::round(length / cell))); }
+
+// The straps' half-ellipse from the bodice's top edge in front over the shoulder to the top edge
+// behind, for a strap column whose front point is `f0`: its length.
+double strap_path(const Vec3& f0, double rise) { return 0.5 * M_PI * std::sqrt(0.5 * (f0.z() * f0.z() + rise * rise)); }
+
+// The strap column the left strap starts at (the one right of its centre line) and the ring
+// point of a column on the bodice's top edge.
+int first_strap_column(const DressParams& p) {
+  const double centre_theta = 2 * M_PI + std::asin(p.strap_x / p.bodice_radius);  // front left
+  return static_cast<int>(std::round((centre_theta - M_PI) * p.around / (2 * M_PI))) - 1;
+}
+Vec3 ring_point(const DressParams& p, double r, double y, int k) {
+  const double theta = M_PI + 2 * M_PI * k / p.around;
+  return Vec3(r * std::sin(theta), y, r * std::cos(theta));
+}
+
 // A tube around the figure's vertical axis from ring (top.y, top.r) down to ring (bottom.y,
 // bottom.r), cut from its developed pattern (a rectangle, or an annular sector for a cone) and
 // sewn at the back. With `sewn_top`, the top ring is those nodes. Returns the node rows, bottom
@@ -71,7 +89,7 @@ std::vector<std::vector<int32_t>> add_tube(Sewing& sew, const TubeParams& p, con
     return Vec3(r * std::sin(theta), y, r * std::cos(theta));
   };
   const double drop = p.top_height - p.bottom_height, flare = p.bottom_radius - p.top_radius, slant = std::hypot(drop, flare);
-  const int rows = std::max(1, static_cast<int>(std::round(slant / p.cell)));
+  const int rows = p.rows > 0 ? p.rows : rows_for(slant, p.cell, 1);
   // Row i from the bottom; in the pattern, a cone is developed about its apex.
   auto radius = [&](int i) { return p.bottom_radius - flare * i / rows; };
   const bool cone = std::abs(flare) > 1e-9 * slant;
@@ -101,31 +119,28 @@ MeshSource make_tube(const TubeParams& p) {
   return sew.take();
 }
 
-MeshSource make_dress(const DressParams& p) {
+MeshSource make_dress(const DressParams& params) {
+  const DressParams p = with_rows(params);
   Sewing sew;
   const int n = p.around;
-  auto theta = [&](int k) { return M_PI + 2 * M_PI * k / n; };
-  auto ring = [&](double r, double y, int k) { return Vec3(r * std::sin(theta(k)), y, r * std::cos(theta(k))); };
+  auto ring = [&](double r, double y, int k) { return ring_point(p, r, y, k); };
   const double column = 2 * p.bodice_radius * std::sin(M_PI / n);  // material width of a column (the ring's chord)
 
   // Bodice: a cylinder from the waist up to the top edge; skirt: a cone from the waist (sewn to
   // the bodice) down to the hem.
-  const auto bodice = add_tube(sew, {p.around, p.top_height, p.bodice_radius, p.waist_height, p.bodice_radius, p.cell}, nullptr);
-  add_tube(sew, {p.around, p.waist_height, p.bodice_radius, p.hem_height, p.hem_radius, p.cell}, &bodice[0]);
+  const auto bodice = add_tube(sew, {p.around, p.top_height, p.bodice_radius, p.waist_height, p.bodice_radius, p.cell, p.bodice_rows}, nullptr);
+  add_tube(sew, {p.around, p.waist_height, p.bodice_radius, p.hem_height, p.hem_radius, p.cell, p.skirt_rows}, &bodice[0]);
   const int rows_b = static_cast<int>(bodice.size()) - 1;
 
   // Straps: arcs over the shoulders from the top edge in front to the top edge behind, two
   // columns wide, each end sewn to the bodice's top row.
-  const double centre_theta = 2 * M_PI + std::asin(p.strap_x / p.bodice_radius);  // front left
-  const int first_left = static_cast<int>(std::round((centre_theta - M_PI) * n / (2 * M_PI))) - 1;
+  const int first_left = first_strap_column(p);
   const auto& top = bodice[static_cast<std::size_t>(rows_b)];
   for (int side : {1, -1}) {
     // Front column c and the back column with the same x, mirrored through the x-y plane.
     auto front = [&](int c) { return side > 0 ? (first_left + c) % n : ((n - first_left - c) % n + n) % n; };
     auto back = [&](int c) { return ((n / 2 - front(c)) % n + n) % n; };
-    const Vec3 f0 = ring(p.bodice_radius, p.top_height, front(1));
-    const double path = 0.5 * M_PI * std::sqrt(0.5 * (f0.z() * f0.z() + p.strap_rise * p.strap_rise));  // half an ellipse
-    const int rows = std::max(2, static_cast<int>(std::round(2 * path / p.cell)));
+    const int rows = p.strap_rows;
     auto point = [&](int i, int c) {
       const Vec3 f = ring(p.bodice_radius, p.top_height, front(c));
       const double phi = M_PI * i / rows;
@@ -147,6 +162,22 @@ MeshSource make_dress(const DressParams& p) {
         [&](const Vec3& x) { return Vec3(0, x.y() - p.top_height, x.z()); });
   }
   return sew.take();
+}
+
+TubeParams with_rows(TubeParams p) {
+  if (p.rows <= 0) p.rows = rows_for(std::hypot(p.top_height - p.bottom_height, p.bottom_radius - p.top_radius), p.cell, 1);
+  return p;
+}
+
+DressParams with_rows(DressParams p) {
+  if (p.bodice_rows <= 0) p.bodice_rows = with_rows(TubeParams{p.around, p.top_height, p.bodice_radius, p.waist_height, p.bodice_radius, p.cell}).rows;
+  if (p.skirt_rows <= 0) p.skirt_rows = with_rows(TubeParams{p.around, p.waist_height, p.bodice_radius, p.hem_height, p.hem_radius, p.cell}).rows;
+  // Both straps are as long (mirror images): the left one's first column, the one after its start.
+  if (p.strap_rows <= 0) {
+    const Vec3 f0 = ring_point(p, p.bodice_radius, p.top_height, (first_strap_column(p) + 1) % p.around);
+    p.strap_rows = rows_for(2 * strap_path(f0, p.strap_rise), p.cell, 2);
+  }
+  return p;
 }
 
 }  // namespace vdc

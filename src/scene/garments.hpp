@@ -15,6 +15,7 @@ struct TubeParams {
   double bottom_height = 0.1;  // m, below the top
   double bottom_radius = 0.4;  // m
   double cell = 0.03;          // m, target edge length down the pattern
+  int rows = 0;                // rows down the pattern; 0: from cell
 };
 MeshSource make_tube(const TubeParams& p);
 
@@ -31,7 +32,17 @@ struct DressParams {
   double strap_rise = 0.20;       // m, how far the straps arc above the top edge
   double strap_x = 0.13;          // m, strap centre from the body's midline
   double cell = 0.03;             // m, target edge length along the straps and down the panels
+  int bodice_rows = 0, skirt_rows = 0, strap_rows = 0;  // rows down each piece; 0: from cell
 };
 MeshSource make_dress(const DressParams& p = {});
+
+// The same parameters with every row count that was 0 set from the cell size: the pieces
+// make_tube and make_dress cut. A garment built from other sizes but these counts has the same
+// nodes in the same order (so a handle chosen on one is the same node of the other).
+TubeParams with_rows(TubeParams p);
+DressParams with_rows(DressParams p);
+
+inline MeshSource make_garment(const TubeParams& p) { return make_tube(p); }
+inline MeshSource make_garment(const DressParams& p) { return make_dress(p); }
 
 }  // namespace vdc

@@ -11,6 +11,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <variant>
 
 #include "core/bvh.hpp"
 #include "core/mesh_build.hpp"
@@ -20,6 +21,9 @@
 #include "physics/cloth_model.hpp"
 #include "scene/body.hpp"
 #include "scene/bvh_motion.hpp"
+#include "scene/dressing.hpp"
+#include "scene/figure.hpp"
+#include "scene/fitting.hpp"
 #include "scene/garments.hpp"
 #include "scene/joint_names.hpp"
 #include "scene/material_file.hpp"
@@ -64,12 +68,20 @@ void check_figure_size(const Motion& motion, double scale, const JsonValue& plac
   place.fail(problem.str());
 }
 
-// How far a capture's root stands, across the floor, from the origin at its first frame: the
+// How far a capture's root stands, across the floor, from the origin at a frame: the
 // shift that brings the figure to where the scene's transform places it (its height kept).
-Vec3 recentering(const Motion& motion) {
-  const Vec3 root = motion.world(motion.frame_pose(0)).front().translation();
+Vec3 recentering(const Motion& motion, int frame) {
+  const Vec3 root = motion.world(motion.frame_pose(static_cast<std::size_t>(frame))).front().translation();
   return Vec3(root.x(), 0.0, root.z());
 }
+
+// A capture whose first pose is further than this from the dressing pose (m, any joint) gets
+// kDefaultPreroll seconds of pre-roll unless its scene says otherwise.
+constexpr double kStillDistance = 0.01, kDefaultPreroll = 1.0, kLongestPreroll = 60.0;
+// What a character's arms keep from its body by default and from what its garments' handles
+// hold (m; build_clearing_arms, GarmentFit::ease_clearing_arms), and how far apart in time the
+// poses they are checked in are (s).
+constexpr double kArmClearance = 0.01, kPoseSampleTime = 1.0 / 30;
 
 // Runs a loader of a referenced file; its errors keep their own file and line and gain the key path.
 template <class F>
@@ -102,7 +114,11 @@ Transform parse_transform(const JsonValue& j) {
   return t;
 }
 
-Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment) {
+// A procedural garment's sizes, kept so the garment can be made again for another figure.
+using Pattern = std::variant<DressParams, TubeParams>;
+
+// With `pattern`, a procedural garment's sizes are kept there.
+Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment, std::optional<Pattern>* pattern = nullptr) {
   if (j.is_string()) {
     std::string file = resolve(j, scene_path);
     return with_key(j, [&] { return read_obj(file, garment); });
@@ -135,6 +151,7 @@ Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment)
     if (p.top_height < p.waist_height + 0.1 || p.top_height > 1.4) d->at("top_height").fail("must be between 1.15 and 1.4 m (waist to armpits)");
     if (p.hem_height >= p.waist_height) d->at("hem_height").fail("must be below the waist (1.05 m)");
     if (p.hem_radius <= p.bodice_radius) d->at("hem_radius").fail("must be more than the bodice radius");
+    if (pattern) *pattern = p;
     return build_mesh(make_dress(p));
   }
   if (auto t = j.find("tube")) {
@@ -151,6 +168,7 @@ Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment)
     p.top_radius = top.y();
     p.bottom_height = bottom.x();
     p.bottom_radius = bottom.y();
+    if (pattern) *pattern = p;
     return build_mesh(make_tube(p));
   }
   if (auto sp = j.find("sphere")) {
@@ -239,24 +257,139 @@ void parse_handles(const JsonValue& list, GarmentSpec& g) {
   }
 }
 
-GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path) {
-  j.only_keys({"name", "group", "mesh", "material", "transform", "handles", "rest_shape"});
+// What making a garment again for the figure wearing it needs (fit_garment).
+struct GarmentMaking {
+  std::optional<Pattern> pattern;  // a procedural garment's sizes on the project's figure
+  std::optional<Transform> transform;
+  bool rest_initial = false;
+};
+
+// The garment placed in the world as given, on the project's figure; handles chosen on it.
+GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path, GarmentMaking& making) {
+  j.only_keys({"name", "group", "mesh", "material", "transform", "handles", "rest_shape", "fit"});
   GarmentSpec g;
   g.name = j.at("name").string();
   g.group = j.string_or("group", "");
-  g.mesh = parse_mesh(j.at("mesh"), scene_path, true);
+  g.mesh = parse_mesh(j.at("mesh"), scene_path, true, &making.pattern);
   g.material = parse_material_ref(j.at("material"), scene_path);
   if (auto t = j.find("transform")) {
-    Transform tr = parse_transform(*t);
-    for (NodeId n : g.mesh.nodes()) g.mesh.x(n) = tr.apply(g.mesh.x(n));
+    making.transform = parse_transform(*t);
+    for (NodeId n : g.mesh.nodes()) g.mesh.x(n) = making.transform->apply(g.mesh.x(n));
   }
   std::string rest = j.string_or("rest_shape", "flat");
-  if (rest == "initial") set_rest_angles_from_world(g.mesh);
+  making.rest_initial = rest == "initial";
+  if (making.rest_initial) set_rest_angles_from_world(g.mesh);
   else if (rest != "flat") j.at("rest_shape").fail("expected \"flat\" or \"initial\"");
   g.mesh.node_attrs().add<int32_t>(kHandleAttr, -1);
   g.mesh.node_attrs().add<Vec3>(kAnchorAttr, Vec3::Zero());
   if (auto h = j.find("handles")) parse_handles(*h, g);
   return g;
+}
+
+// The character a garment is fitted to: its "fit" (a character's name, or false for none), by
+// default the one character among the obstacles it collides with (its group's and those of no
+// group), if there is exactly one. Null: the garment is made as given.
+const ObstacleSpec* garment_wearer(const JsonValue& j, const GarmentSpec& g, const GarmentMaking& making, const std::vector<ObstacleSpec>& obstacles) {
+  const auto fit = j.find("fit");
+  if (fit && fit->raw().is_boolean() && !fit->boolean()) return nullptr;
+  if (fit && fit->is_string()) {
+    const std::string name = fit->string();
+    const auto o = std::find_if(obstacles.begin(), obstacles.end(), [&](const ObstacleSpec& x) { return x.name == name; });
+    if (o == obstacles.end()) fit->fail("no obstacle named '" + name + "'");
+    if (!o->character) fit->fail("'" + name + "' is not a character");
+    if (!o->group.empty() && o->group != g.group) fit->fail("'" + name + "' is in another group than the garment");
+    if (!making.pattern) fit->fail("only a procedural garment (dress or tube) can be fitted to a character");
+    return &*o;
+  }
+  if (fit && !fit->raw().is_boolean()) fit->fail("expected a character's name, true (the default) or false");
+  if (!making.pattern) return nullptr;
+  const ObstacleSpec* wearer = nullptr;
+  for (const auto& o : obstacles)
+    if (o.character && (o.group.empty() || o.group == g.group)) {
+      if (wearer) return nullptr;
+      wearer = &o;
+    }
+  return wearer;
+}
+
+std::string missing_joint(const Skeleton& skeleton, const std::string& joint);
+
+// The project's figure as garments are sized for, with a body made as `body` makes the wearer's
+// (so the two are measured alike).
+FigureMeasure reference_figure(const BodyParams& body) {
+  Motion figure;
+  figure.skeleton = figure_skeleton();
+  figure.frames.assign(1, std::vector<double>(static_cast<std::size_t>(figure.skeleton.num_channels), 0.0));
+  BodyParams as_made = body;
+  as_made.build = 1.0;
+  const Body made(figure, as_made);
+  const Pose rest = Body::rest_pose(figure.skeleton);
+  return measure_figure(figure, rest, made.skin(rest), made.main_joints(), as_made.resolution);
+}
+
+// The procedural garments a character wears made again for it, in the pose they are put on in
+// (fitting.hpp), each cut in the same rows so its handles hold the same nodes.
+// `start_time` and `shot` bound the run's time: the arms' reach is taken over it.
+void fit_garments(const JsonValue& scene, std::vector<GarmentSpec>& garments, const std::vector<GarmentMaking>& making,
+                  const std::vector<std::size_t>& worn, const Character& wearer, const std::string& wearer_name, double start_time,
+                  double shot) {
+  const Pose& pose = wearer.dressing_pose();
+  const JsonValue first = scene.at("garments").items()[worn.front()];
+  std::optional<GarmentFit> fit;
+  std::optional<FigureMeasure> figure;
+  const FigureMeasure reference = reference_figure(wearer.body_params());
+  try {
+    figure = measure_figure(wearer.motion(), pose, wearer.skinned(pose), wearer.main_joints(), wearer.body_params().resolution);
+    fit.emplace(reference, *figure);
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    const bool joint = what.find(' ') == std::string::npos;
+    (first.has("fit") ? first.at("fit") : first)
+        .fail("cannot fit the garment to character '" + wearer_name + "': " + (joint ? missing_joint(wearer.motion().skeleton, what) : what) +
+              " (or set \"fit\": false)");
+  }
+  if (fit->identity()) return;
+  // Held nodes must stay clear of the arms: their reach over the motion, when anything is held.
+  std::vector<HeldGarment> held;
+  for (std::size_t g : worn) {
+    HeldGarment& h = held.emplace_back(HeldGarment{*making[g].pattern, {}});
+    const auto& which = garments[g].mesh.node_attrs().get<int32_t>(kHandleAttr);
+    for (NodeId n : garments[g].mesh.nodes())
+      if (which[n] >= 0) h.held.push_back(n.idx);
+  }
+  double ease = 1.0;
+  if (std::any_of(held.begin(), held.end(), [](const HeldGarment& h) { return !h.held.empty(); })) {
+    std::vector<Pose> moving;
+    for (int k = 0; start_time + k * kPoseSampleTime < shot; ++k) moving.push_back(wearer.pose_at(start_time + k * kPoseSampleTime));
+    moving.push_back(wearer.pose_at(shot));
+    measure_arm_reach(*figure, wearer.motion(), pose, wearer.main_joints(), moving,
+                      [&](const Pose& p) { return wearer.skinned(p); });
+    fit.emplace(reference, *figure);
+    ease = fit->ease_clearing_arms(held, kArmClearance);
+  }
+  for (std::size_t g : worn) {
+    GarmentSpec& garment = garments[g];
+    MeshSource source = std::visit([&](const auto& p) { return make_garment(fit->fit(p, ease)); }, *making[g].pattern);
+    for (Vec3& x : source.positions) x = fit->place(x);
+    Mesh mesh = build_mesh(source);
+    if (mesh.num_nodes() != garment.mesh.num_nodes() || mesh.num_faces() != garment.mesh.num_faces())
+      throw std::logic_error("a fitted garment has other nodes than the garment it fits");
+    if (making[g].transform)
+      for (NodeId n : mesh.nodes()) mesh.x(n) = making[g].transform->apply(mesh.x(n));
+    if (making[g].rest_initial) set_rest_angles_from_world(mesh);
+    auto& which = mesh.node_attrs().add<int32_t>(kHandleAttr, -1);
+    auto& anchor = mesh.node_attrs().add<Vec3>(kAnchorAttr, Vec3::Zero());
+    const auto& chosen = garment.mesh.node_attrs().get<int32_t>(kHandleAttr);
+    for (NodeId n : mesh.nodes())
+      if (chosen[n] >= 0) {
+        which[n] = chosen[n];
+        anchor[n] = mesh.x(n);
+        mesh.flags(n) |= kNodeHandle;
+      }
+    garment.mesh = std::move(mesh);
+    garment.fitted_to = wearer_name;
+    garment.ease = ease;
+  }
 }
 
 // Why find_joint found no `joint`: the names tried and the first of the motion's joints.
@@ -281,7 +414,8 @@ std::string missing_joint(const Skeleton& skeleton, const std::string& joint) {
   return msg + " (a character's joint_names renames a capture's joints)";
 }
 
-ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time) {
+// `shot` is the scene's length (s): a character's build looks at the poses it takes in the shot.
+ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time, double shot) {
   j.only_keys({"name", "group", "mesh", "character", "transform", "motion"});
   ObstacleSpec o;
   o.name = j.at("name").string();
@@ -289,7 +423,7 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
   if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
   if (auto c = j.find("character")) {
     // The character places itself (its transform applies to the skinned body every frame).
-    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter", "joint_names"});
+    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter", "joint_names", "first_frame", "preroll"});
     const JsonValue file = c->at("motion");
     const std::string path = resolve(file, scene_path);
     Motion motion = with_key(file, [&] { return read_bvh(path); });
@@ -319,19 +453,44 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
       });
       for (Vec3& x : skin->positions) x *= scale;
     }
+    // The shot starts at `first_frame`, by default after the capture's leading reference frames
+    // (its T-pose), which are then the pose the garments are made in (dressing.hpp).
+    const int reference = leading_reference_frames(motion);
+    int first = reference;
+    if (auto f = c->find("first_frame")) {
+      const long long k = f->integer();
+      if (k < 0 || k >= static_cast<long long>(motion.frames.size()))
+        f->fail("must be between 0 and " + std::to_string(motion.frames.size() - 1) + " (the motion's last frame)");
+      first = static_cast<int>(k);
+    }
     if (c->boolean_or("recenter", true)) {
-      const Vec3 shift = recentering(motion);
+      const Vec3 shift = recentering(motion, first);
       motion.skeleton.joints.front().offset -= shift;
       if (skin)
         for (Vec3& x : skin->positions) x -= shift;
     }
+    Dressing dressing;
+    dressing.pose = dressing_pose(motion, std::min(reference, first), first);
+    motion.frames.erase(motion.frames.begin(), motion.frames.begin() + first);
+    // A capture that does not start in the dressing pose moves into it over a second by default.
+    const double apart = largest_joint_distance(motion, *dressing.pose, motion.frame_pose(0));
+    dressing.preroll = c->has("preroll") ? c->at("preroll").non_negative() : apart > kStillDistance ? kDefaultPreroll : 0.0;
+    if (dressing.preroll > kLongestPreroll) c->at("preroll").fail("must be at most 60 s");
     BodyParams body;
-    body.build = c->positive_or("build", body.build);
     body.resolution = c->positive_or("resolution", body.resolution);
     if (body.resolution < 0.005) c->at("resolution").fail("must be at least 0.005 m");
     const double start = c->number_or("start", 0.0), speed = c->positive_or("speed", 1.0);
+    // By default as built as the project's figure, or slimmer if its arms would otherwise pass
+    // through its body where the garments are put on or anywhere in the shot.
+    if (c->has("build")) {
+      body.build = c->at("build").positive();
+    } else {
+      std::vector<Pose> poses = clip_poses(MotionClip{&motion, start, speed}, 0.0, shot, kPoseSampleTime);
+      poses.push_back(*dressing.pose);
+      body.build = build_clearing_arms(motion, poses, kArmClearance);
+    }
     const Transform placement = j.has("transform") ? parse_transform(j.at("transform")) : Transform{};
-    o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed, std::move(skin));
+    o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed, std::move(skin), std::move(dressing));
     o.mesh = build_mesh(o.character->rest_mesh());
     const std::vector<Vec3> x0 = o.character->positions_at(0.0);
     for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x0[static_cast<std::size_t>(n.idx)];
@@ -513,16 +672,38 @@ Scene load_scene(const std::string& path) {
     s.collision.untangle_iterations = static_cast<int>(untangle);
   }
   std::set<std::string> names;
+  std::vector<GarmentMaking> making;
   for (const JsonValue& g : j.at("garments").items()) {
-    s.garments.push_back(parse_garment(g, path));
+    s.garments.push_back(parse_garment(g, path, making.emplace_back()));
     check_name(g.at("name"), s.garments.back().name, names);
   }
   if (s.garments.empty()) j.at("garments").fail("a scene needs at least one garment");
   if (auto obs = j.find("obstacles"))
     for (const JsonValue& o : obs->items()) {
-      s.obstacles.push_back(parse_obstacle(o, path, s.frame_time));
+      s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time));
       check_name(o.at("name"), s.obstacles.back().name, names);
     }
+  // The run starts before the shot by the longest pre-roll, characters in their dressing poses,
+  // each garment made for the character wearing it.
+  double preroll = 0;
+  for (const auto& o : s.obstacles)
+    if (o.character) preroll = std::max(preroll, o.character->preroll());
+  s.preroll_frames = static_cast<int>(std::ceil(preroll / s.frame_time - 1e-9));
+  if (s.preroll_frames > 0)
+    for (auto& o : s.obstacles)
+      if (o.character) {
+        const std::vector<Vec3> x = o.character->positions_at(s.start_time());
+        for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x[static_cast<std::size_t>(n.idx)];
+      }
+  std::vector<std::pair<const ObstacleSpec*, std::vector<std::size_t>>> worn;  // by wearer, in scene order
+  for (std::size_t gi = 0; gi < s.garments.size(); ++gi)
+    if (const ObstacleSpec* wearer = garment_wearer(j.at("garments").items()[gi], s.garments[gi], making[gi], s.obstacles)) {
+      auto it = std::find_if(worn.begin(), worn.end(), [&](const auto& w) { return w.first == wearer; });
+      if (it == worn.end()) it = worn.insert(worn.end(), {wearer, {}});
+      it->second.push_back(gi);
+    }
+  for (const auto& [wearer, garments] : worn)
+    fit_garments(j, s.garments, making, garments, *wearer->character, wearer->name, s.start_time(), s.frames * s.frame_time);
   // Handles attached to a character's joint, now that the obstacles are known.
   for (std::size_t gi = 0; gi < s.garments.size(); ++gi) {
     const JsonValue garment = j.at("garments").items()[gi];
@@ -543,7 +724,7 @@ Scene load_scene(const std::string& path) {
       ClothHandle& handle = s.garments[gi].handles[hi];
       handle.character = o->character;
       handle.joint = *found;
-      handle.from_start = handle.character->joint_transform(handle.joint, 0.0).inverse();
+      handle.from_start = handle.character->joint_transform(handle.joint, s.start_time()).inverse();
     }
   }
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {

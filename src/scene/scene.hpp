@@ -26,6 +26,10 @@ struct GarmentSpec {
   Mesh mesh;  // at the start, placed in world space; node attributes kHandleAttr and kAnchorAttr set
   Material material;
   std::vector<ClothHandle> handles;
+  // A procedural garment made for the character wearing it (fitting.hpp): the character's name
+  // (empty: made as given) and the share of its ease it keeps.
+  std::string fitted_to;
+  double ease = 1.0;
 };
 
 // An obstacle: a mesh placed by its transform, then moved rigidly over time by its motion:
@@ -76,6 +80,11 @@ struct Scene {
   std::vector<ObstacleSpec> obstacles;
   std::optional<CameraPath> camera;  // the `camera` block; --mode view needs it
   ViewParams view;                   // the `view` block
+  // Frames simulated before the shot's frame 0 (from time -preroll_frames * frame_time, never
+  // written): the longest of the characters' pre-rolls, in whole frames. The garments' and
+  // obstacles' meshes are placed at the start of it.
+  int preroll_frames = 0;
+  double start_time() const { return -preroll_frames * frame_time; }
 };
 
 // Changes below any meaning a scene's author gives them (`vdcloth run --perturb` and

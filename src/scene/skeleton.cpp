@@ -61,6 +61,12 @@ std::vector<Eigen::Isometry3d> Motion::world(const Pose& pose) const {
   return out;
 }
 
+bool descends_from(const Skeleton& skeleton, int joint, int ancestor) {
+  for (int j = joint; j >= 0; j = skeleton.joints[static_cast<std::size_t>(j)].parent)
+    if (j == ancestor) return true;
+  return false;
+}
+
 void scale_lengths(Motion& motion, double factor) {
   for (Joint& j : motion.skeleton.joints) {
     j.offset *= factor;

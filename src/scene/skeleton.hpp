@@ -48,6 +48,9 @@ struct Motion {
   std::vector<Eigen::Isometry3d> world(const Pose& pose) const;
 };
 
+// Whether `joint` is `ancestor` or below it in the hierarchy.
+bool descends_from(const Skeleton& skeleton, int joint, int ancestor);
+
 // Scales every length of a motion (joint offsets and position channels), e.g. from a capture's
 // units to metres.
 void scale_lengths(Motion& motion, double factor);

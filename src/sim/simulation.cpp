@@ -42,7 +42,7 @@ CollisionMesh collision_mesh(const Mesh& mesh) {
 }  // namespace
 
 Simulation::Simulation(Scene scene, const SimOptions& options, Log log)
-    : scene_(std::move(scene)), options_(options), log_(std::move(log)) {
+    : scene_(std::move(scene)), options_(options), log_(std::move(log)), frame_(-scene_.preroll_frames) {
   check_options_and_collect_obstacles();
   for (const auto& g : scene_.garments) {
     Mesh& mesh = garments_.emplace_back(g.mesh);

@@ -72,6 +72,7 @@ struct ResumePoint {
 class Simulation {
  public:
   using Log = std::function<void(const std::string&)>;
+  // Starts at the scene's start: frame -preroll_frames (the frames before 0 are its pre-roll).
   Simulation(Scene scene, const SimOptions& options, Log log = {});
   // Resumes at `from`: the scene's garments take its meshes, and nothing is remeshed or
   // untangled, so the next frame is the one the stopped simulation would have made after

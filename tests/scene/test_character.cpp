@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "scene/bvh_motion.hpp"
 #include "io/obj.hpp"
+#include "scene/figure.hpp"
 #include "scene/scene.hpp"
 
 namespace vdc {
@@ -209,6 +210,79 @@ TEST(Character, JointsOfOtherNamingSchemesAreFoundOrRenamedByTheScene) {
   EXPECT_TRUE(same_body(mixamo));
   EXPECT_TRUE(same_body(other));
   EXPECT_FALSE(same_body(unmapped));  // leg_upper_l is thinner than a thigh: a leg's radii
+}
+
+// A capture of a 1.6 m figure at 120 frames a second that holds a T-pose for one frame before its motion: the shot
+// starts after that frame, the run a second earlier (the default pre-roll) with the figure in
+// the T-pose, and the garments are made for the 1.6 m figure, their handles the same nodes.
+TEST(Character, ACaptureIsDressedInItsReferencePoseAndPrerolledIntoItsFirstPose) {
+  const fs::path dir = fs::temp_directory_path() / ("vdcloth_dressing_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const double s = 1.6 / 1.75;
+  const Skeleton figure = figure_skeleton(1.6);
+  PoseKey t_pose, rest, step;
+  t_pose.rotation = {{"LeftArm", Vec3(0, 0, 50)}, {"RightArm", Vec3(0, 0, -50)}};
+  step.time = 1;
+  step.root = Vec3(0.2, 0, 0);
+  Motion capture = author_motion(figure, {rest, step}, 120, "walk");
+  capture.frames.insert(capture.frames.begin(), author_motion(figure, {t_pose}, 120, "tee").frames.front());
+  ASSERT_TRUE(write_bvh(capture, (dir / "capture.bvh").string()));
+  auto scene = [&](const std::string& dress_fit) {
+    std::ofstream(dir / "scene.json") << R"({"garments": [
+      {"name": "dress", "mesh": {"dress": {}}, "material": {"density": 0.1, "stretch": {"warp": 100, "weft": 100, "shear": 10}, "bending": 1e-6})" +
+                                               dress_fit + R"(},
+      {"name": "belt", "mesh": {"tube": {"top": [1.06, 0.23], "bottom": [0.99, 0.23]}},
+       "material": {"density": 0.1, "stretch": {"warp": 100, "weft": 100, "shear": 10}, "bending": 1e-6},
+       "handles": [{"box": [[-1, 1.055, -1], [1, 1.065, 1]], "attach": {"obstacle": "walker", "joint": "Hips"}}]}],
+      "obstacles": [{"name": "walker", "character": {"motion": "capture.bvh", "resolution": 0.05}}]})";
+    return load_scene((dir / "scene.json").string());
+  };
+  const Scene fitted = scene("");
+  const Scene as_given = scene(R"(, "fit": false)");
+  EXPECT_THROW(scene(R"(, "fit": "nobody")"), InputError);
+  fs::remove_all(dir);
+
+  EXPECT_EQ(fitted.preroll_frames, 25);
+  EXPECT_NEAR(fitted.start_time(), -1.0, 1e-12);
+  const Character& walker = *fitted.obstacles[0].character;
+  EXPECT_EQ(walker.preroll(), 1.0);
+  EXPECT_EQ(walker.motion().frames.size(), capture.frames.size() - 1);  // the T-pose is not played
+  // The body starts in the T-pose and is in the first frame's pose when the shot starts.
+  const std::vector<Vec3> t_posed = walker.positions_at(-1), first = walker.positions_at(0);
+  for (NodeId n : fitted.obstacles[0].mesh.nodes()) ASSERT_EQ(fitted.obstacles[0].mesh.x(n), t_posed[static_cast<std::size_t>(n.idx)]);
+  double moved = 0;
+  for (std::size_t i = 0; i < first.size(); ++i) moved = std::max(moved, (first[i] - t_posed[i]).norm());
+  EXPECT_GT(moved, 0.3);
+  EXPECT_TRUE(walker.skinned(walker.dressing_pose()) == t_posed);
+
+  // The dress's hem hangs at the 1.6 m figure's 0.45 x 1.6 / 1.75 m instead of 0.45 m.
+  auto lowest = [](const Mesh& m) {
+    double y = 1e9;
+    for (NodeId n : m.nodes()) y = std::min(y, m.x(n).y());
+    return y;
+  };
+  EXPECT_NEAR(lowest(fitted.garments[0].mesh), s * 0.45, 1e-9);
+  EXPECT_NEAR(lowest(as_given.garments[0].mesh), 0.45, 1e-9);
+  EXPECT_EQ(fitted.garments[0].mesh.num_nodes(), as_given.garments[0].mesh.num_nodes());
+  // The belt's handle holds its top ring, now at 1.06 x 1.6 / 1.75 m, carried by the hips from
+  // where they are at the run's start.
+  const Mesh& belt = fitted.garments[1].mesh;
+  const auto& which = belt.node_attrs().get<int32_t>(kHandleAttr);
+  const auto& anchor = belt.node_attrs().get<Vec3>(kAnchorAttr);
+  int held = 0;
+  for (NodeId n : belt.nodes())
+    if (which[n] == 0) {
+      ++held;
+      EXPECT_NEAR(belt.x(n).y(), s * 1.06, 1e-9);
+      EXPECT_EQ(anchor[n], belt.x(n));
+      EXPECT_TRUE(belt.flags(n) & kNodeHandle);
+    }
+  EXPECT_EQ(held, 48);
+  const ClothHandle& handle = fitted.garments[1].handles[0];
+  EXPECT_TRUE(handle.carry(fitted.start_time()).isApprox(Eigen::Affine3d::Identity(), 1e-12));
+  // At the shot's start the hips have stepped 0 m (the step starts there) and stand as in the
+  // T-pose: the belt is where it was made.
+  EXPECT_LT((handle.carry(0.0).translation()).norm(), 1e-9);
 }
 
 }  // namespace

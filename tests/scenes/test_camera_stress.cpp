@@ -53,7 +53,7 @@ std::vector<FrameStats> run_view(Scene scene, int frames, int threads) {
   for (int f = 0; f < frames; ++f) {
     const FrameStats s = run.step_frame();
     stats.push_back(s);
-    for (const auto& part : run.parts()) EXPECT_EQ(test::first_crossing(part->scene()), "") << "frame " << s.frame;
+    for (const auto& part : run.parts()) EXPECT_EQ(test::first_crossing(*part), "") << "frame " << s.frame;
     EXPECT_EQ(s.collision_fallbacks, 0) << "frame " << s.frame;
     EXPECT_EQ(s.remesh_undone, 0) << "frame " << s.frame;
     if (::testing::Test::HasFailure()) break;

@@ -1,0 +1,95 @@
+// Fitting the procedural garments, whose sizes are given for the project's figure, to the figure
+// that wears them: heights carried by the skeleton's landmarks (soles, knees, hip joints,
+// shoulders, head), radii changed so the garment keeps the ease (its radius beyond the body's)
+// it has on the project's figure at every height, the garment placed on the figure's axis.
+#pragma once
+#include <array>
+#include <functional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "scene/garments.hpp"
+#include "scene/skeleton.hpp"
+
+namespace vdc {
+
+// A figure as a garment sees it, in the pose the garment is put on in, in the figure's own frame:
+// its root's vertical axis at x = z = 0, facing +z.
+struct FigureMeasure {
+  // Heights (m): the lowest joint, the knees, the hip joints, the shoulders and the head (the
+  // mean of the left and right joints), increasing.
+  std::array<double, 5> landmarks{};
+  double shoulder_half_width = 0;  // m: the shoulder joints' mean distance from the axis
+  Vec3 axis = Vec3::Zero();        // the root where the figure stands (y = 0), in the skeleton's space
+  double heading = 0;              // radians about +y from +z to where the figure faces
+  // Girth: the farthest body vertex from the axis (arms and head left out) within `band` above
+  // or below a height, tabulated every kGirthStep from girth_base up.
+  double band = 0.03;
+  double girth_base = 0;
+  std::vector<double> girth;
+  static constexpr double kGirthStep = 0.005;
+  double girth_at(double y) const;  // 0 outside the body
+  // Reach: the nearest the arms' surface comes to the axis at a height, over the poses of the
+  // figure's motion (each in its own root's frame, heights as the root stands in the dressing
+  // pose), in the same table; infinite where the arms never are.
+  std::vector<double> reach;
+  double reach_at(double y) const;
+};
+
+// Measures a figure in `pose`: the skeleton's landmark joints (found by find_joint, so a
+// capture's naming scheme works) and the body's vertices in that pose with the joint moving each
+// most (Body::main_joints). Throws std::invalid_argument naming a landmark joint the skeleton
+// lacks, or landmarks out of order (a figure not standing upright).
+FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const std::vector<Vec3>& body, const std::vector<int>& main_joints,
+                             double band);
+
+// Adds the arms' reach to a figure measured in `pose`: over the `moving` poses, whose body
+// vertices `skin` gives (by mesh index, like measure_figure's `body`).
+void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const std::vector<int>& main_joints,
+                       const std::vector<Pose>& moving, const std::function<std::vector<Vec3>(const Pose&)>& skin);
+
+// A procedural garment and the nodes its handles hold (indices of make_garment's positions).
+struct HeldGarment {
+  std::variant<DressParams, TubeParams> pattern;
+  std::vector<int> held;
+};
+
+// The map from a garment's sizes on the reference figure to the figure it is put on.
+class GarmentFit {
+ public:
+  GarmentFit(FigureMeasure reference, FigureMeasure figure);
+  // The figure is the reference (landmarks within a micrometre, girth within 2 mm, on the
+  // reference's axis and heading): garments are made as specified.
+  bool identity() const { return identity_; }
+  // A reference height on the figure: piecewise linear through the landmarks, extended beyond
+  // them by the end pieces.
+  double height(double y) const;
+  // How much wider the figure's body is at height(y) than the reference's at y (m).
+  double girth_change(double y) const;
+  // The largest girth_change over reference heights [lo, hi].
+  double largest_girth_change(double lo, double hi) const;
+  // The garment's sizes on the figure, cut in the same rows (with_rows) as on the reference, its
+  // ease (radius beyond the body) at every height at least `ease` times what it is on the
+  // reference.
+  TubeParams fit(const TubeParams& p, double ease = 1.0) const;
+  DressParams fit(const DressParams& p, double ease = 1.0) const;
+  // The largest share of their ease, 1 at most and kLeastEase at least, that a figure's garments
+  // can keep with every node a handle holds at least `clearance` inside the arms' reach (needs
+  // measure_arm_reach): cloth a handle holds cannot make way, so a held waistband the arms
+  // pass through would hold the arms. All garments of a figure take the same share, so layers
+  // stay in their order.
+  double ease_clearing_arms(const std::vector<HeldGarment>& garments, double clearance) const;
+  static constexpr double kLeastEase = 0.2;
+  // No garment is made narrower than this share of its given radius.
+  static constexpr double kNarrowest = 0.3;
+  // From the figure's frame (where fitted garments are made) to the skeleton's space.
+  Vec3 place(const Vec3& x) const;
+
+ private:
+  double needed(double y, double radius, double ease) const;
+  FigureMeasure reference_, figure_;
+  bool identity_ = false;
+};
+
+}  // namespace vdc

@@ -1,0 +1,143 @@
+// Garments fitted to the figure wearing them: heights through the skeleton's landmarks, radii
+// keeping the ease the garment has on the project's figure, the same rows cut; and the build
+// that keeps a slender figure's arms clear of its body.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "scene/body.hpp"
+#include "scene/bvh_motion.hpp"
+#include "scene/figure.hpp"
+#include "scene/fitting.hpp"
+#include "scene/garments.hpp"
+
+namespace vdc {
+namespace {
+
+constexpr double kResolution = 0.03;
+
+Motion at_rest(const Skeleton& skeleton) {
+  Motion m;
+  m.skeleton = skeleton;
+  m.frames.assign(1, std::vector<double>(static_cast<std::size_t>(skeleton.num_channels), 0.0));
+  return m;
+}
+
+FigureMeasure measured(const Motion& motion, double build) {
+  const Body body(motion, BodyParams{build, kResolution, 0.04});
+  const Pose rest = Body::rest_pose(motion.skeleton);
+  return measure_figure(motion, rest, body.skin(rest), body.main_joints(), kResolution);
+}
+
+TEST(Fitting, TheProjectsFigureWearsGarmentsAsGiven) {
+  const FigureMeasure reference = measured(at_rest(figure_skeleton()), 1.0);
+  // The project's figure: toes 0.01, knees 0.48, hips 0.90, shoulders 1.42, head 1.56 m.
+  EXPECT_NEAR(reference.landmarks[0], 0.01, 1e-12);
+  EXPECT_NEAR(reference.landmarks[1], 0.48, 1e-12);
+  EXPECT_NEAR(reference.landmarks[2], 0.90, 1e-12);
+  EXPECT_NEAR(reference.landmarks[3], 1.42, 1e-12);
+  EXPECT_NEAR(reference.landmarks[4], 1.56, 1e-12);
+  EXPECT_NEAR(reference.shoulder_half_width, 0.18, 1e-12);
+  // The dance's skeleton, as read from its BVH file, is the same figure.
+  Motion dance = read_bvh(std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh");
+  dance.frames.resize(1);
+  EXPECT_TRUE(GarmentFit(reference, measured(dance, 1.0)).identity());
+  EXPECT_FALSE(GarmentFit(reference, measured(at_rest(figure_skeleton(1.6)), 1.0)).identity());
+  EXPECT_FALSE(GarmentFit(reference, measured(dance, 1.2)).identity());
+}
+
+TEST(Fitting, HeightsFollowTheLandmarksAndTheEaseIsKept) {
+  const FigureMeasure reference = measured(at_rest(figure_skeleton()), 1.0);
+  // A figure of 1.6 m, every bone 1.6 / 1.75 as long, limbs 1.2 times as thick.
+  const GarmentFit fit(reference, measured(at_rest(figure_skeleton(1.6)), 1.2));
+  const double s = 1.6 / 1.75;
+  for (double y : {0.0, 0.45, 1.05, 1.32, 1.52, 2.0}) EXPECT_NEAR(fit.height(y), s * y, 1e-12) << y;
+
+  const DressParams dress;
+  const DressParams fitted = fit.fit(dress);
+  EXPECT_NEAR(fitted.waist_height, s * dress.waist_height, 1e-12);
+  EXPECT_NEAR(fitted.hem_height, s * dress.hem_height, 1e-12);
+  EXPECT_NEAR(fitted.strap_rise, s * dress.strap_rise, 1e-12);
+  EXPECT_NEAR(fitted.strap_x, s * dress.strap_x, 1e-12);  // the shoulders are s times as wide
+  EXPECT_GT(fitted.bodice_radius, dress.bodice_radius + 0.01);
+  // At every height the fitted garment is as far beyond the figure's body as the given one is
+  // beyond the project's figure's, or farther.
+  const FigureMeasure figure = measured(at_rest(figure_skeleton(1.6)), 1.2);
+  auto ease_lost = [&](double y, double radius, double fitted_radius) {
+    return (radius - reference.girth_at(y)) - (fitted_radius - figure.girth_at(fit.height(y)));
+  };
+  double most_lost = -1;
+  for (double y = dress.waist_height; y <= dress.top_height; y += 0.005)
+    most_lost = std::max(most_lost, ease_lost(y, dress.bodice_radius, fitted.bodice_radius));
+  const double drop = dress.waist_height - dress.hem_height;
+  for (double y = dress.hem_height; y <= dress.waist_height - 0.1 * drop; y += 0.005) {
+    const double u = (dress.waist_height - y) / drop;
+    most_lost = std::max(most_lost, ease_lost(y, dress.bodice_radius + u * (dress.hem_radius - dress.bodice_radius),
+                                              fitted.bodice_radius + u * (fitted.hem_radius - fitted.bodice_radius)));
+  }
+  EXPECT_LE(most_lost, 1e-12);
+  EXPECT_GT(most_lost, -1e-3);  // and no more than it must: some height keeps exactly its ease
+
+  // Cut in the same rows: the same nodes in the same order.
+  EXPECT_EQ(make_dress(fitted).positions.size(), make_dress(dress).positions.size());
+  EXPECT_EQ(make_dress(fitted).faces.size(), make_dress(dress).faces.size());
+  const TubeParams tube{48, 1.0, 0.185, 0.3, 0.36, 0.03};
+  const TubeParams fitted_tube = fit.fit(tube);
+  EXPECT_EQ(fitted_tube.rows, with_rows(tube).rows);
+  EXPECT_NEAR(fitted_tube.top_height, s * 1.0, 1e-12);
+  EXPECT_NEAR(fitted_tube.top_radius - tube.top_radius, fitted_tube.bottom_radius - tube.bottom_radius, 1e-12);
+  EXPECT_NEAR(fitted_tube.top_radius - tube.top_radius, fit.largest_girth_change(0.3, 1.0), 1e-12);
+}
+
+TEST(Fitting, AFigureWithoutLandmarksIsNamed) {
+  Skeleton skeleton = figure_skeleton();
+  for (Joint& j : skeleton.joints)
+    if (j.name == "LeftLeg") j.name = "LeftTibia";  // a name no scheme gives the knee
+  try {
+    measured(at_rest(skeleton), 1.0);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "LeftLeg");
+  }
+}
+
+TEST(Fitting, ASlenderFiguresBuildKeepsItsArmsClear) {
+  // A torso bone straight up from (0, 1, 0) to (0, 1.5, 0), 0.13 m thick; collarbones out to
+  // shoulders at x = +-0.15; upper arms from there down and out to (+-0.25, 1.1, 0), 0.05 to
+  // 0.04 m thick. The shoulder is nearest the torso: 0.15 m between the axes, 0.18 m of radii,
+  // so the arms keep 1 cm at a build of (0.15 - 0.01) / 0.18.
+  Skeleton k;
+  auto add = [&](const std::string& name, int parent, Vec3 offset, bool end = false) {
+    Joint j;
+    j.name = name;
+    j.parent = parent;
+    j.offset = offset;
+    j.end_site = end;
+    j.first_channel = k.num_channels;
+    if (!end) j.channels = {Channel::ZRotation, Channel::XRotation, Channel::YRotation};
+    k.num_channels += static_cast<int>(j.channels.size());
+    k.joints.push_back(j);
+    return static_cast<int>(k.joints.size()) - 1;
+  };
+  const int hips = add("Hips", -1, Vec3(0, 1, 0));
+  const int spine = add("Spine", hips, Vec3(0, 0.5, 0));
+  for (int side : {1, -1}) {
+    const std::string p = side > 0 ? "Left" : "Right";
+    const int shoulder = add(p + "Shoulder", spine, Vec3(side * 0.1, 0, 0));
+    const int arm = add(p + "Arm", shoulder, Vec3(side * 0.05, 0, 0));
+    const int fore = add(p + "ForeArm", arm, Vec3(side * 0.1, -0.4, 0));
+    add(p + "Hand", fore, Vec3(side * 0.1, -0.3, 0), true);
+  }
+  const Motion m = at_rest(k);
+  EXPECT_NEAR(build_clearing_arms(m, {Body::rest_pose(k)}, 0.01), 0.14 / 0.18, 1e-12);
+  // The project's motions keep their arms clear at full build in every frame.
+  for (const char* name : {"dance", "karate"}) {
+    const Motion motion = read_bvh(std::string(VDCLOTH_SOURCE_DIR) + "/motions/" + name + ".bvh");
+    std::vector<Pose> poses;
+    for (std::size_t f = 0; f < motion.frames.size(); ++f) poses.push_back(motion.frame_pose(f));
+    EXPECT_EQ(build_clearing_arms(motion, poses, 0.01), 1.0) << name;
+  }
+}
+
+}  // namespace
+}  // namespace vdc
