@@ -42,10 +42,18 @@ Pose dressing_pose(const Motion& motion, int reference, int first) {
   return rest;
 }
 
+std::vector<double> sample_times(double from, double to, double every) {
+  const double span = std::max(0.0, to - from);
+  const int steps = std::clamp(static_cast<int>(std::ceil(span / every - 1e-9)), 1, kMostSamples - 1);
+  std::vector<double> times;
+  for (int k = 0; k <= steps; ++k) times.push_back(from + span * k / steps);
+  return times;
+}
+
 std::vector<Pose> clip_poses(const MotionClip& clip, double from, double to, double every) {
-  const int steps = std::max(1, static_cast<int>(std::ceil((to - from) / every - 1e-9)));
+  to = std::min(to, clip.start + clip.motion->duration() / clip.speed);
   std::vector<Pose> poses;
-  for (int k = 0; k <= steps; ++k) poses.push_back(clip.pose_at(from + (to - from) * k / steps));
+  for (double t : sample_times(from, std::max(from, to), every)) poses.push_back(clip.pose_at(t));
   return poses;
 }
 

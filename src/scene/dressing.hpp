@@ -27,8 +27,13 @@ int leading_reference_frames(const Motion& motion);
 // frame's lowest. For the project's motions, which start at rest, the rest pose.
 Pose dressing_pose(const Motion& motion, int reference, int first);
 
-// A clip's poses at scene times from `from` to `to`, at most `every` seconds apart, both ends
-// included.
+// Times from `from` to `to`, both included, `every` seconds apart or closer, and at most
+// kMostSamples of them (a long shot is sampled more sparsely).
+inline constexpr int kMostSamples = 10000;
+std::vector<double> sample_times(double from, double to, double every);
+
+// A clip's poses at sample_times(from, to, every), `to` cut to where the clip's motion ends
+// (it holds its last pose after).
 std::vector<Pose> clip_poses(const MotionClip& clip, double from, double to, double every);
 
 // Per joint, rotations by spherical interpolation and translations linearly: a at s = 0, b at 1.

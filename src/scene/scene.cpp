@@ -360,8 +360,8 @@ void fit_garments(const JsonValue& scene, std::vector<GarmentSpec>& garments, co
   double ease = 1.0;
   if (std::any_of(held.begin(), held.end(), [](const HeldGarment& h) { return !h.held.empty(); })) {
     std::vector<Pose> moving;
-    for (int k = 0; start_time + k * kPoseSampleTime < shot; ++k) moving.push_back(wearer.pose_at(start_time + k * kPoseSampleTime));
-    moving.push_back(wearer.pose_at(shot));
+    const double end = std::min(shot, wearer.start() + wearer.motion().duration() / wearer.speed());  // held after
+    for (double t : sample_times(start_time, std::max(start_time, end), kPoseSampleTime)) moving.push_back(wearer.pose_at(t));
     measure_arm_reach(*figure, wearer.motion(), pose, wearer.main_joints(), moving,
                       [&](const Pose& p) { return wearer.skinned(p); });
     fit.emplace(reference, *figure);
