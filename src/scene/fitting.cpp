@@ -21,18 +21,59 @@ Mat3 turn_about_y(double angle) { return Eigen::AngleAxisd(angle, Vec3::UnitY())
 
 }  // namespace
 
-double FigureMeasure::girth_at(double y) const {
-  const double k = std::floor((y - girth_base) / kGirthStep + 0.5);
-  if (k < 0 || k >= static_cast<double>(girth.size())) return 0;
-  return girth[static_cast<std::size_t>(k)];
+
+namespace {
+
+// Calls visit(k, a, b) for every table height k (girth_base + k kGirthStep) whose horizontal plane
+// cuts the triangle (p0, p1, p2), with the two points where the plane meets its edges.
+template <class Visit>
+void slice(const Vec3& p0, const Vec3& p1, const Vec3& p2, double base, std::size_t heights, Visit&& visit) {
+  const double lo = std::min({p0.y(), p1.y(), p2.y()}), hi = std::max({p0.y(), p1.y(), p2.y()});
+  const double step = FigureMeasure::kGirthStep;
+  const double first = std::max(0.0, std::ceil((lo - base) / step)), last = std::min(static_cast<double>(heights) - 1, std::floor((hi - base) / step));
+  const Vec3* corner[3] = {&p0, &p1, &p2};
+  for (double k = first; k <= last; ++k) {
+    const double y = base + k * step;
+    Vec3 cut[2];
+    int n = 0;
+    for (int e = 0; e < 3 && n < 2; ++e) {
+      const Vec3 &a = *corner[e], &b = *corner[(e + 1) % 3];
+      if ((a.y() - y) * (b.y() - y) > 0 || a.y() == b.y()) continue;
+      cut[n++] = a + (y - a.y()) / (b.y() - a.y()) * (b - a);
+    }
+    if (n == 2) visit(static_cast<std::size_t>(k), cut[0], cut[1]);
+  }
 }
 
-FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const std::vector<Vec3>& body, const std::vector<int>& main_joints,
-                             double band) {
+// The nearest point of the horizontal segment (a, b) to the vertical axis: its distance.
+double axis_distance(const Vec3& a, const Vec3& b) {
+  const Vec2 p(a.x(), a.z()), q(b.x(), b.z()), d = q - p;
+  const double t = d.squaredNorm() > 0 ? std::clamp(-p.dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p + t * d).norm();
+}
+
+// Per joint: whether it is one of the named joints or below one.
+std::vector<char> below(const Skeleton& skeleton, const std::vector<int>& roots) {
+  std::vector<char> out(skeleton.joints.size(), 0);
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
+    for (int r : roots) out[j] = out[j] || descends_from(skeleton, static_cast<int>(j), r);
+  return out;
+}
+
+// Whether any corner of a face is moved most by one of `joints`.
+bool touches(const std::array<Corner, 3>& face, const std::vector<int>& main_joints, const std::vector<char>& joints) {
+  for (const Corner& c : face)
+    if (joints[static_cast<std::size_t>(main_joints[static_cast<std::size_t>(c.node)])]) return true;
+  return false;
+}
+
+}  // namespace
+
+FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<Vec3>& body,
+                             const std::vector<int>& main_joints) {
   const Skeleton& skeleton = motion.skeleton;
   const std::vector<Eigen::Isometry3d> world = motion.world(pose);
   FigureMeasure m;
-  m.band = band;
   const Vec3 root = world.front().translation();
   m.axis = Vec3(root.x(), 0, root.z());
   const Vec3 forward = world.front().linear() * Vec3::UnitZ();
@@ -50,6 +91,7 @@ FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const std::
     if (!(m.landmarks[k] > m.landmarks[k - 1] + 0.01))
       throw std::invalid_argument("its soles, knees, hips, shoulders and head are not one above the other in the pose its garments are made in");
   m.shoulder_half_width = 0.5 * (std::hypot(left_arm.x(), left_arm.z()) + std::hypot(right_arm.x(), right_arm.z()));
+  if (body.empty()) return m;
 
   // Arms (from the collarbones, where the skeleton has them) and head are not what a garment's
   // rings go around.
@@ -57,58 +99,65 @@ FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const std::
     const std::optional<int> s = find_joint(skeleton, shoulder);
     return s ? *s : joint_or_throw(skeleton, arm_joint);
   };
-  const int arms[] = {arm("LeftShoulder", "LeftArm"), arm("RightShoulder", "RightArm"), joint_or_throw(skeleton, "Head")};
-  std::vector<char> left_out(skeleton.joints.size(), 0);
-  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
-    for (int a : arms) left_out[j] = left_out[j] || descends_from(skeleton, static_cast<int>(j), a);
+  const std::vector<char> left_out = below(skeleton, {arm("LeftShoulder", "LeftArm"), arm("RightShoulder", "RightArm"), joint_or_throw(skeleton, "Head")});
+  std::vector<Vec3> x(body.size());
   double lo = INFINITY, hi = -INFINITY;
-  for (const Vec3& x : body) {
-    lo = std::min(lo, local(x).y());
-    hi = std::max(hi, local(x).y());
-  }
-  if (body.empty()) return m;
-  m.girth_base = lo - band;
-  m.girth.assign(static_cast<std::size_t>(std::ceil((hi - lo + 2 * band) / FigureMeasure::kGirthStep)) + 1, 0.0);
   for (std::size_t v = 0; v < body.size(); ++v) {
-    if (left_out[static_cast<std::size_t>(main_joints[v])]) continue;
-    const Vec3 p = local(body[v]);
-    const double r = std::hypot(p.x(), p.z());
-    const auto first = static_cast<std::size_t>(std::max(0.0, std::ceil((p.y() - band - m.girth_base) / FigureMeasure::kGirthStep - 0.5)));
-    const auto last = std::min(m.girth.size() - 1, static_cast<std::size_t>(std::floor((p.y() + band - m.girth_base) / FigureMeasure::kGirthStep + 0.5)));
-    for (std::size_t k = first; k <= last; ++k) m.girth[k] = std::max(m.girth[k], r);
+    x[v] = local(body[v]);
+    lo = std::min(lo, x[v].y());
+    hi = std::max(hi, x[v].y());
+  }
+  m.girth_base = lo;
+  m.girth.assign(static_cast<std::size_t>(std::ceil((hi - lo) / FigureMeasure::kGirthStep)) + 1, 0.0);
+  // The body's exact cross-section at each height: the farthest point of it is where the plane
+  // cuts an edge (distance from the axis is convex along a segment).
+  for (const auto& f : body_mesh.faces) {
+    if (touches(f, main_joints, left_out)) continue;
+    slice(x[static_cast<std::size_t>(f[0].node)], x[static_cast<std::size_t>(f[1].node)], x[static_cast<std::size_t>(f[2].node)], m.girth_base,
+          m.girth.size(), [&](std::size_t k, const Vec3& a, const Vec3& b) {
+            m.girth[k] = std::max({m.girth[k], std::hypot(a.x(), a.z()), std::hypot(b.x(), b.z())});
+          });
   }
   return m;
 }
 
-double FigureMeasure::reach_at(double y) const {
-  const double k = std::floor((y - girth_base) / kGirthStep + 0.5);
-  if (k < 0 || k >= static_cast<double>(reach.size())) return INFINITY;
-  return reach[static_cast<std::size_t>(k)];
+double FigureMeasure::girth_at(double y) const {
+  const double s = (y - girth_base) / kGirthStep;
+  double g = 0;
+  for (double k : {std::floor(s), std::ceil(s)})
+    if (k >= 0 && k < static_cast<double>(girth.size())) g = std::max(g, girth[static_cast<std::size_t>(k)]);
+  return g;
 }
 
-void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const std::vector<int>& main_joints,
+double FigureMeasure::reach_at(double y) const {
+  const double s = (y - girth_base) / kGirthStep;
+  double r = INFINITY;
+  for (double k : {std::floor(s), std::ceil(s)})
+    if (k >= 0 && k < static_cast<double>(reach.size())) r = std::min(r, reach[static_cast<std::size_t>(k)]);
+  return r;
+}
+
+void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<int>& main_joints,
                        const std::vector<Pose>& moving, const std::function<std::vector<Vec3>(const Pose&)>& skin) {
   const Skeleton& skeleton = motion.skeleton;
-  const int arms[] = {joint_or_throw(skeleton, "LeftArm"), joint_or_throw(skeleton, "RightArm")};
-  std::vector<char> arm(skeleton.joints.size(), 0);
-  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
-    for (int a : arms) arm[j] = arm[j] || descends_from(skeleton, static_cast<int>(j), a);
+  const std::vector<char> arm = below(skeleton, {joint_or_throw(skeleton, "LeftArm"), joint_or_throw(skeleton, "RightArm")});
+  std::vector<std::size_t> arm_faces;
+  for (std::size_t f = 0; f < body_mesh.faces.size(); ++f)
+    if (touches(body_mesh.faces[f], main_joints, arm)) arm_faces.push_back(f);
   m.reach.assign(m.girth.size(), INFINITY);
   const double stand = motion.world(pose).front().translation().y();
   for (const Pose& p : moving) {
+    // Each pose in its own root's frame: the arms as the garments, which move with the body, meet them.
     const Eigen::Isometry3d root = motion.world(p).front();
     const Vec3 forward = root.linear() * Vec3::UnitZ();
     const Mat3 unturn = turn_about_y(std::hypot(forward.x(), forward.z()) > 1e-6 ? -std::atan2(forward.x(), forward.z()) : 0.0);
     const Vec3 axis(root.translation().x(), root.translation().y() - stand, root.translation().z());
     const std::vector<Vec3> x = skin(p);
-    for (std::size_t v = 0; v < x.size(); ++v) {
-      if (!arm[static_cast<std::size_t>(main_joints[v])]) continue;
-      const Vec3 q = unturn * (x[v] - axis);
-      const double r = std::hypot(q.x(), q.z());
-      const double lo = std::ceil((q.y() - m.band - m.girth_base) / FigureMeasure::kGirthStep - 0.5);
-      const double hi = std::floor((q.y() + m.band - m.girth_base) / FigureMeasure::kGirthStep + 0.5);
-      for (double k = std::max(lo, 0.0); k <= std::min(hi, static_cast<double>(m.reach.size()) - 1); ++k)
-        m.reach[static_cast<std::size_t>(k)] = std::min(m.reach[static_cast<std::size_t>(k)], r);
+    auto local = [&](int node) -> Vec3 { return unturn * (x[static_cast<std::size_t>(node)] - axis); };
+    for (std::size_t f : arm_faces) {
+      const auto& face = body_mesh.faces[f];
+      slice(local(face[0].node), local(face[1].node), local(face[2].node), m.girth_base, m.reach.size(),
+            [&](std::size_t k, const Vec3& a, const Vec3& b) { m.reach[k] = std::min(m.reach[k], axis_distance(a, b)); });
     }
   }
 }
@@ -130,14 +179,6 @@ double GarmentFit::height(double y) const {
   return to[i] + (y - from[i]) * (to[i + 1] - to[i]) / (from[i + 1] - from[i]);
 }
 
-double GarmentFit::girth_change(double y) const { return figure_.girth_at(height(y)) - reference_.girth_at(y); }
-
-double GarmentFit::largest_girth_change(double lo, double hi) const {
-  double most = -INFINITY;
-  for (double y = lo; y < hi; y += FigureMeasure::kGirthStep) most = std::max(most, girth_change(y));
-  return std::max(most, girth_change(hi));
-}
-
 // The radius a garment needs at reference height y on the figure to keep `ease` times its ease
 // there: the figure's girth at the matching height and that share of radius minus girth.
 double GarmentFit::needed(double y, double radius, double ease) const {
@@ -146,15 +187,19 @@ double GarmentFit::needed(double y, double radius, double ease) const {
 
 TubeParams GarmentFit::fit(const TubeParams& p, double ease) const {
   TubeParams q = with_rows(p);
-  // Both rings move out by what the tightest height needs.
-  auto radius = [&](double y) { return p.bottom_radius + (y - p.bottom_height) / (p.top_height - p.bottom_height) * (p.top_radius - p.bottom_radius); };
-  double wider = -INFINITY;
-  for (double y = p.bottom_height; y < p.top_height; y += FigureMeasure::kGirthStep) wider = std::max(wider, needed(y, radius(y), ease) - radius(y));
-  wider = std::max(wider, needed(p.top_height, p.top_radius, ease) - p.top_radius);
   q.top_height = height(p.top_height);
   q.bottom_height = height(p.bottom_height);
-  q.top_radius = std::max(kNarrowest * p.top_radius, p.top_radius + wider);
-  q.bottom_radius = std::max(kNarrowest * p.bottom_radius, p.bottom_radius + wider);
+  // The top ring (where a tube hangs from, where a waistband is held) as close as its ease
+  // allows; the bottom ring as wide as the cone then needs to keep its ease at every height.
+  auto radius = [&](double y) { return p.bottom_radius + (y - p.bottom_height) / (p.top_height - p.bottom_height) * (p.top_radius - p.bottom_radius); };
+  q.top_radius = std::max(kNarrowest * p.top_radius, needed(p.top_height, p.top_radius, ease));
+  q.bottom_radius = std::max(kNarrowest * p.bottom_radius, needed(p.bottom_height, p.bottom_radius, ease));
+  const double drop = p.top_height - p.bottom_height;
+  for (double y = p.bottom_height; y < p.top_height; y += FigureMeasure::kGirthStep) {
+    const double u = (p.top_height - y) / drop;  // 0 at the top, 1 at the bottom
+    if (u < 0.1) break;
+    q.bottom_radius = std::max(q.bottom_radius, q.top_radius + (needed(y, radius(y), ease) - q.top_radius) / u);
+  }
   return q;
 }
 

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/mesh_build.hpp"
 #include "scene/garments.hpp"
 #include "scene/skeleton.hpp"
 
@@ -23,30 +24,30 @@ struct FigureMeasure {
   double shoulder_half_width = 0;  // m: the shoulder joints' mean distance from the axis
   Vec3 axis = Vec3::Zero();        // the root where the figure stands (y = 0), in the skeleton's space
   double heading = 0;              // radians about +y from +z to where the figure faces
-  // Girth: the farthest body vertex from the axis (arms and head left out) within `band` above
-  // or below a height, tabulated every kGirthStep from girth_base up.
-  double band = 0.03;
+  // Girth: the farthest point of the body's cross-section (arms from the collarbones and head
+  // left out) from the axis, at heights kGirthStep apart from girth_base up.
   double girth_base = 0;
   std::vector<double> girth;
   static constexpr double kGirthStep = 0.005;
-  double girth_at(double y) const;  // 0 outside the body
-  // Reach: the nearest the arms' surface comes to the axis at a height, over the poses of the
-  // figure's motion (each in its own root's frame, heights as the root stands in the dressing
-  // pose), in the same table; infinite where the arms never are.
+  double girth_at(double y) const;  // the larger of the two nearest heights'; 0 outside the body
+  // Reach: the nearest the arms' cross-section comes to the axis at those heights, over the
+  // poses of the figure's motion (each in its own root's frame, heights as the root stands in
+  // the dressing pose); infinite where the arms never are.
   std::vector<double> reach;
-  double reach_at(double y) const;
+  double reach_at(double y) const;  // the smaller of the two nearest heights' reach
 };
 
 // Measures a figure in `pose`: the skeleton's landmark joints (found by find_joint, so a
-// capture's naming scheme works) and the body's vertices in that pose with the joint moving each
-// most (Body::main_joints). Throws std::invalid_argument naming a landmark joint the skeleton
-// lacks, or landmarks out of order (a figure not standing upright).
-FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const std::vector<Vec3>& body, const std::vector<int>& main_joints,
-                             double band);
+// capture's naming scheme works) and the body (`body_mesh`'s faces, `body` its vertices in that
+// pose, `main_joints` the joint moving each most: Body::main_joints). Throws
+// std::invalid_argument naming a landmark joint the skeleton lacks, or landmarks out of order (a
+// figure not standing upright).
+FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<Vec3>& body,
+                             const std::vector<int>& main_joints);
 
 // Adds the arms' reach to a figure measured in `pose`: over the `moving` poses, whose body
-// vertices `skin` gives (by mesh index, like measure_figure's `body`).
-void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const std::vector<int>& main_joints,
+// vertices `skin` gives.
+void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<int>& main_joints,
                        const std::vector<Pose>& moving, const std::function<std::vector<Vec3>(const Pose&)>& skin);
 
 // A procedural garment and the nodes its handles hold (indices of make_garment's positions).
@@ -65,10 +66,6 @@ class GarmentFit {
   // A reference height on the figure: piecewise linear through the landmarks, extended beyond
   // them by the end pieces.
   double height(double y) const;
-  // How much wider the figure's body is at height(y) than the reference's at y (m).
-  double girth_change(double y) const;
-  // The largest girth_change over reference heights [lo, hi].
-  double largest_girth_change(double lo, double hi) const;
   // The garment's sizes on the figure, cut in the same rows (with_rows) as on the reference, its
   // ease (radius beyond the body) at every height at least `ease` times what it is on the
   // reference.

@@ -324,7 +324,7 @@ FigureMeasure reference_figure(const BodyParams& body) {
   as_made.build = 1.0;
   const Body made(figure, as_made);
   const Pose rest = Body::rest_pose(figure.skeleton);
-  return measure_figure(figure, rest, made.skin(rest), made.main_joints(), as_made.resolution);
+  return measure_figure(figure, rest, made.rest_mesh(), made.skin(rest), made.main_joints());
 }
 
 // The procedural garments a character wears made again for it, in the pose they are put on in
@@ -339,7 +339,7 @@ void fit_garments(const JsonValue& scene, std::vector<GarmentSpec>& garments, co
   std::optional<FigureMeasure> figure;
   const FigureMeasure reference = reference_figure(wearer.body_params());
   try {
-    figure = measure_figure(wearer.motion(), pose, wearer.skinned(pose), wearer.main_joints(), wearer.body_params().resolution);
+    figure = measure_figure(wearer.motion(), pose, wearer.rest_mesh(), wearer.skinned(pose), wearer.main_joints());
     fit.emplace(reference, *figure);
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
@@ -362,7 +362,7 @@ void fit_garments(const JsonValue& scene, std::vector<GarmentSpec>& garments, co
     std::vector<Pose> moving;
     const double end = std::min(shot, wearer.start() + wearer.motion().duration() / wearer.speed());  // held after
     for (double t : sample_times(start_time, std::max(start_time, end), kPoseSampleTime)) moving.push_back(wearer.pose_at(t));
-    measure_arm_reach(*figure, wearer.motion(), pose, wearer.main_joints(), moving,
+    measure_arm_reach(*figure, wearer.motion(), pose, wearer.rest_mesh(), wearer.main_joints(), moving,
                       [&](const Pose& p) { return wearer.skinned(p); });
     fit.emplace(reference, *figure);
     ease = fit->ease_clearing_arms(held, kArmClearance);

@@ -26,7 +26,7 @@ Motion at_rest(const Skeleton& skeleton) {
 FigureMeasure measured(const Motion& motion, double build) {
   const Body body(motion, BodyParams{build, kResolution, 0.04});
   const Pose rest = Body::rest_pose(motion.skeleton);
-  return measure_figure(motion, rest, body.skin(rest), body.main_joints(), kResolution);
+  return measure_figure(motion, rest, body.rest_mesh(), body.skin(rest), body.main_joints());
 }
 
 TEST(Fitting, TheProjectsFigureWearsGarmentsAsGiven) {
@@ -81,12 +81,29 @@ TEST(Fitting, HeightsFollowTheLandmarksAndTheEaseIsKept) {
   // Cut in the same rows: the same nodes in the same order.
   EXPECT_EQ(make_dress(fitted).positions.size(), make_dress(dress).positions.size());
   EXPECT_EQ(make_dress(fitted).faces.size(), make_dress(dress).faces.size());
+  // A tube: its top ring keeps exactly its ease there, the cone below at least its ease, at
+  // every height, for the whole ease and for a share of it.
   const TubeParams tube{48, 1.0, 0.185, 0.3, 0.36, 0.03};
-  const TubeParams fitted_tube = fit.fit(tube);
-  EXPECT_EQ(fitted_tube.rows, with_rows(tube).rows);
-  EXPECT_NEAR(fitted_tube.top_height, s * 1.0, 1e-12);
-  EXPECT_NEAR(fitted_tube.top_radius - tube.top_radius, fitted_tube.bottom_radius - tube.bottom_radius, 1e-12);
-  EXPECT_NEAR(fitted_tube.top_radius - tube.top_radius, fit.largest_girth_change(0.3, 1.0), 1e-12);
+  for (double share : {1.0, 0.3}) {
+    const TubeParams fitted_tube = fit.fit(tube, share);
+    EXPECT_EQ(fitted_tube.rows, with_rows(tube).rows);
+    EXPECT_NEAR(fitted_tube.top_height, s * 1.0, 1e-12);
+    EXPECT_NEAR(fitted_tube.bottom_height, s * 0.3, 1e-12);
+    auto kept = [&](double y, double radius, double fitted_radius) {  // fitted ease less `share` of the given
+      return (fitted_radius - figure.girth_at(fit.height(y))) - share * (radius - reference.girth_at(y));
+    };
+    EXPECT_NEAR(kept(1.0, tube.top_radius, fitted_tube.top_radius), 0, 1e-12) << share;
+    double least = 1;
+    for (double y = 0.3; y <= 1.0 - 0.07; y += 0.005) {
+      const double u = (1.0 - y) / 0.7;
+      least = std::min(least, kept(y, tube.top_radius + u * (tube.bottom_radius - tube.top_radius),
+                                   fitted_tube.top_radius + u * (fitted_tube.bottom_radius - fitted_tube.top_radius)));
+    }
+    EXPECT_GE(least, -1e-12) << share;
+    EXPECT_LT(least, 1e-3) << share;  // and the cone is no wider than it must be somewhere
+  }
+  // A share of the ease: the dress is narrower, its bodice by 0.7 of the given ease at its tightest.
+  EXPECT_LT(fit.fit(dress, 0.3).bodice_radius, fitted.bodice_radius - 0.01);
 }
 
 TEST(Fitting, AFigureWithoutLandmarksIsNamed) {

@@ -108,28 +108,31 @@ TEST(Characters, GarmentsStartValidAndClear) {
   }
 }
 
-// solo-dancer with its motion swapped for a CMU capture (assimp-testmodels' 01_01.bvh: a T-pose
-// reference frame, then forward jumps), at the capture's documented scale and nothing else
-// changed: the dress is made for the capture's figure in its T-pose, the pre-roll brings the
-// figure into its first pose, and 40 frames in adaptive and view mode end with nothing crossing,
-// no frame far slower than the run's median (the test's mesh is coarser than the scene's: 2 cm
-// at the finest, so it runs in a minute on one thread).
-TEST(Characters, ACaptureDrivesTheDressWithoutCrossings) {
+// solo-dancer and karate with their motion swapped for a CMU capture (assimp-testmodels'
+// 01_01.bvh: a T-pose reference frame, then forward jumps), at the capture's documented scale
+// and nothing else changed: the garments are made for the capture's figure in its T-pose (karate's
+// held hakama and belt inside the arms' reach), the pre-roll brings the figure into its first
+// pose, and 40 frames in adaptive and view mode end with nothing crossing and no frame far slower
+// than the run's median (the test's mesh is coarser than the scenes': 2 cm at the finest).
+class CaptureShot : public testing::TestWithParam<std::string> {};
+
+TEST_P(CaptureShot, ACaptureDrivesTheGarmentsWithoutCrossings) {
   const std::string capture = "/usr/share/assimp/models/BVH/01_01.bvh";
   if (!std::ifstream(capture)) GTEST_SKIP() << capture << " is missing (scripts/install-deps.sh installs assimp-testmodels)";
-  const std::string dir = testing::TempDir() + "vdcloth_capture_" + std::to_string(::getpid());
+  const std::string name = GetParam();
+  const std::string dir = testing::TempDir() + "vdcloth_capture_" + name + "_" + std::to_string(::getpid());
   std::filesystem::create_directories(dir);
-  nlohmann::json scene = nlohmann::json::parse(std::ifstream(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/solo-dancer.json"));
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/" + name + ".json"));
   scene["obstacles"][0]["character"]["motion"] = capture;
   scene["obstacles"][0]["character"]["scale"] = 0.056;
-  scene["garments"][0]["material"] = std::string(VDCLOTH_SOURCE_DIR) + "/materials/cotton.json";
+  for (auto& g : scene["garments"]) g["material"] = std::string(VDCLOTH_SOURCE_DIR) + "/materials/" + (name == "karate" ? "denim" : "cotton") + ".json";
   scene["remeshing"]["size"] = {0.02, 0.2};
-  std::ofstream(dir + "/solo-capture.json") << scene.dump();
+  std::ofstream(dir + "/capture.json") << scene.dump();
   for (SimMode mode : {SimMode::Adaptive, SimMode::View}) {
-    Ensemble run(load_scene(dir + "/solo-capture.json"), SimOptions{mode, 1});
+    Ensemble run(load_scene(dir + "/capture.json"), SimOptions{mode, 1});
     const Simulation& part = *run.parts().front();
     EXPECT_EQ(part.scene().preroll_frames, 25);
-    EXPECT_EQ(part.scene().garments[0].fitted_to, "dancer");
+    for (const GarmentSpec& g : part.scene().garments) EXPECT_EQ(g.fitted_to, scene["obstacles"][0]["name"]) << g.name;
     ASSERT_EQ(first_crossing(part), "") << "at the start of the pre-roll";
     while (run.frame() < 0) run.step_frame();
     ASSERT_EQ(first_crossing(part), "") << "after the pre-roll";
@@ -146,6 +149,9 @@ TEST(Characters, ACaptureDrivesTheDressWithoutCrossings) {
   }
   std::filesystem::remove_all(dir);
 }
+
+INSTANTIATE_TEST_SUITE_P(Captures, CaptureShot, testing::Values("solo-dancer", "karate"),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param == "karate" ? "karate" : "solo_dancer"; });
 
 }  // namespace
 }  // namespace vdc
