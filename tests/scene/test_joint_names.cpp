@@ -11,7 +11,12 @@ namespace {
 
 Skeleton skeleton_of(const std::vector<std::string>& names) {
   Skeleton s;
-  for (const std::string& name : names) s.joints.push_back(Joint{name, s.joints.empty() ? -1 : 0});
+  for (const std::string& name : names) {
+    Joint j;
+    j.name = name;
+    j.parent = s.joints.empty() ? -1 : 0;
+    s.joints.push_back(j);
+  }
   return s;
 }
 
