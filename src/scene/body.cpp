@@ -94,13 +94,9 @@ double build_clearing_arms(const Motion& motion, const std::vector<Pose>& poses,
   }
   if (const std::optional<int> neck = find_joint(skeleton, "Neck")) shoulders_and_head.push_back(*neck);
   // Per joint: 1 an arm's, 2 a shoulder's, the neck's or the head's, 0 the torso's or a leg's.
+  const std::vector<char> in_arm = joints_below(skeleton, arms), in_upper = joints_below(skeleton, shoulders_and_head);
   std::vector<int> part(skeleton.joints.size(), 0);
-  for (std::size_t j = 0; j < part.size(); ++j) {
-    for (int r : shoulders_and_head)
-      if (descends_from(skeleton, static_cast<int>(j), r)) part[j] = 2;
-    for (int r : arms)
-      if (descends_from(skeleton, static_cast<int>(j), r)) part[j] = 1;
-  }
+  for (std::size_t j = 0; j < part.size(); ++j) part[j] = in_arm[j] ? 1 : in_upper[j] ? 2 : 0;
   double build = 1.0;
   for (const Pose& pose : poses) {
     const std::vector<Bone> bones = bones_in(skeleton, motion.world(pose), 1.0);

@@ -19,10 +19,11 @@ int joint_or_throw(const Skeleton& skeleton, const std::string& name) {
 
 Mat3 turn_about_y(double angle) { return Eigen::AngleAxisd(angle, Vec3::UnitY()).toRotationMatrix(); }
 
-}  // namespace
-
-
-namespace {
+// Where a root faces across the floor: radians about +y from +z (0 for a root facing up or down).
+double heading(const Eigen::Isometry3d& root) {
+  const Vec3 forward = root.linear() * Vec3::UnitZ();
+  return std::hypot(forward.x(), forward.z()) > 1e-6 ? std::atan2(forward.x(), forward.z()) : 0.0;
+}
 
 // Calls visit(k, a, b) for every table height k (girth_base + k kGirthStep) whose horizontal plane
 // cuts the triangle (p0, p1, p2), with the two points where the plane meets its edges.
@@ -52,14 +53,6 @@ double axis_distance(const Vec3& a, const Vec3& b) {
   return (p + t * d).norm();
 }
 
-// Per joint: whether it is one of the named joints or below one.
-std::vector<char> below(const Skeleton& skeleton, const std::vector<int>& roots) {
-  std::vector<char> out(skeleton.joints.size(), 0);
-  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
-    for (int r : roots) out[j] = out[j] || descends_from(skeleton, static_cast<int>(j), r);
-  return out;
-}
-
 // Whether any corner of a face is moved most by one of `joints`.
 bool touches(const std::array<Corner, 3>& face, const std::vector<int>& main_joints, const std::vector<char>& joints) {
   for (const Corner& c : face)
@@ -76,8 +69,7 @@ FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshS
   FigureMeasure m;
   const Vec3 root = world.front().translation();
   m.axis = Vec3(root.x(), 0, root.z());
-  const Vec3 forward = world.front().linear() * Vec3::UnitZ();
-  if (std::hypot(forward.x(), forward.z()) > 1e-6) m.heading = std::atan2(forward.x(), forward.z());
+  m.heading = heading(world.front());
   const Mat3 unturn = turn_about_y(-m.heading);
   auto local = [&](const Vec3& p) -> Vec3 { return unturn * (p - m.axis); };
   auto at = [&](const std::string& name) { return local(world[static_cast<std::size_t>(joint_or_throw(skeleton, name))].translation()); };
@@ -99,7 +91,7 @@ FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshS
     const std::optional<int> s = find_joint(skeleton, shoulder);
     return s ? *s : joint_or_throw(skeleton, arm_joint);
   };
-  const std::vector<char> left_out = below(skeleton, {arm("LeftShoulder", "LeftArm"), arm("RightShoulder", "RightArm"), joint_or_throw(skeleton, "Head")});
+  const std::vector<char> left_out = joints_below(skeleton, {arm("LeftShoulder", "LeftArm"), arm("RightShoulder", "RightArm"), joint_or_throw(skeleton, "Head")});
   std::vector<Vec3> x(body.size());
   double lo = INFINITY, hi = -INFINITY;
   for (std::size_t v = 0; v < body.size(); ++v) {
@@ -140,7 +132,7 @@ double FigureMeasure::reach_at(double y) const {
 void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<int>& main_joints,
                        const std::vector<Pose>& moving, const std::function<std::vector<Vec3>(const Pose&)>& skin) {
   const Skeleton& skeleton = motion.skeleton;
-  const std::vector<char> arm = below(skeleton, {joint_or_throw(skeleton, "LeftArm"), joint_or_throw(skeleton, "RightArm")});
+  const std::vector<char> arm = joints_below(skeleton, {joint_or_throw(skeleton, "LeftArm"), joint_or_throw(skeleton, "RightArm")});
   std::vector<std::size_t> arm_faces;
   for (std::size_t f = 0; f < body_mesh.faces.size(); ++f)
     if (touches(body_mesh.faces[f], main_joints, arm)) arm_faces.push_back(f);
@@ -149,8 +141,7 @@ void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose,
   for (const Pose& p : moving) {
     // Each pose in its own root's frame: the arms as the garments, which move with the body, meet them.
     const Eigen::Isometry3d root = motion.world(p).front();
-    const Vec3 forward = root.linear() * Vec3::UnitZ();
-    const Mat3 unturn = turn_about_y(std::hypot(forward.x(), forward.z()) > 1e-6 ? -std::atan2(forward.x(), forward.z()) : 0.0);
+    const Mat3 unturn = turn_about_y(-heading(root));
     const Vec3 axis(root.translation().x(), root.translation().y() - stand, root.translation().z());
     const std::vector<Vec3> x = skin(p);
     auto local = [&](int node) -> Vec3 { return unturn * (x[static_cast<std::size_t>(node)] - axis); };

@@ -215,9 +215,15 @@ NodeId nearest_vert_node(const Mesh& mesh, const Vec2& u) {
   return mesh.vert_node(best);
 }
 
+// Node n of a garment's mesh held by handle `index`, anchored where it is.
+void hold_node(Mesh& mesh, NodeId n, int32_t index) {
+  mesh.node_attrs().get<int32_t>(kHandleAttr)[n] = index;
+  mesh.node_attrs().get<Vec3>(kAnchorAttr)[n] = mesh.x(n);
+  mesh.flags(n) |= kNodeHandle;
+}
+
 void parse_handles(const JsonValue& list, GarmentSpec& g) {
-  auto& which = g.mesh.node_attrs().get<int32_t>(kHandleAttr);
-  auto& anchor = g.mesh.node_attrs().get<Vec3>(kAnchorAttr);
+  const auto& which = g.mesh.node_attrs().get<int32_t>(kHandleAttr);
   for (const JsonValue& h : list.items()) {
     h.only_keys({"nodes", "points", "uv", "box", "release", "path", "attach"});
     ClothHandle handle;
@@ -249,9 +255,7 @@ void parse_handles(const JsonValue& list, GarmentSpec& g) {
     const auto index = static_cast<int32_t>(g.handles.size());
     for (NodeId n : nodes) {
       if (which[n] >= 0 && which[n] != index) h.fail("node " + std::to_string(n.idx) + " already belongs to another handle");
-      which[n] = index;
-      anchor[n] = g.mesh.x(n);
-      g.mesh.flags(n) |= kNodeHandle;
+      hold_node(g.mesh, n, index);
     }
     g.handles.push_back(handle);
   }
@@ -377,15 +381,11 @@ void fit_garments(const JsonValue& scene, std::vector<GarmentSpec>& garments, co
     if (making[g].transform)
       for (NodeId n : mesh.nodes()) mesh.x(n) = making[g].transform->apply(mesh.x(n));
     if (making[g].rest_initial) set_rest_angles_from_world(mesh);
-    auto& which = mesh.node_attrs().add<int32_t>(kHandleAttr, -1);
-    auto& anchor = mesh.node_attrs().add<Vec3>(kAnchorAttr, Vec3::Zero());
+    mesh.node_attrs().add<int32_t>(kHandleAttr, -1);
+    mesh.node_attrs().add<Vec3>(kAnchorAttr, Vec3::Zero());
     const auto& chosen = garment.mesh.node_attrs().get<int32_t>(kHandleAttr);
     for (NodeId n : mesh.nodes())
-      if (chosen[n] >= 0) {
-        which[n] = chosen[n];
-        anchor[n] = mesh.x(n);
-        mesh.flags(n) |= kNodeHandle;
-      }
+      if (chosen[n] >= 0) hold_node(mesh, n, chosen[n]);
     garment.mesh = std::move(mesh);
     garment.fitted_to = wearer_name;
     garment.ease = ease;

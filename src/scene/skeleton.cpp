@@ -67,6 +67,13 @@ bool descends_from(const Skeleton& skeleton, int joint, int ancestor) {
   return false;
 }
 
+std::vector<char> joints_below(const Skeleton& skeleton, const std::vector<int>& roots) {
+  std::vector<char> out(skeleton.joints.size(), 0);
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
+    for (int r : roots) out[j] = out[j] || descends_from(skeleton, static_cast<int>(j), r);
+  return out;
+}
+
 void scale_lengths(Motion& motion, double factor) {
   for (Joint& j : motion.skeleton.joints) {
     j.offset *= factor;

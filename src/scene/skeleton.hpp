@@ -50,6 +50,8 @@ struct Motion {
 
 // Whether `joint` is `ancestor` or below it in the hierarchy.
 bool descends_from(const Skeleton& skeleton, int joint, int ancestor);
+// Per joint: whether it is one of `roots` or below one.
+std::vector<char> joints_below(const Skeleton& skeleton, const std::vector<int>& roots);
 
 // Scales every length of a motion (joint offsets and position channels), e.g. from a capture's
 // units to metres.
