@@ -125,6 +125,9 @@ void Simulation::remesh_garments(FrameStats& stats) {
   // fallback for a remesh whose crossings untangling cannot remove (size_and_remesh keeps them as
   // sized, so that they carry this frame's view and compression factors).
   std::vector<Mesh> started_with(garments_.size());
+  // The pre-roll is never seen: it is sized as in adaptive mode, so the shot's first frame is the
+  // adaptive run's, and the view's coarsening starts with the shot.
+  const bool viewing = options_.mode == SimMode::View && frame_ >= 0;
   const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
   // The collider's hierarchies, unless a restart will drop them (a resumed run has none yet, and
   // must find what an uninterrupted one finds).
@@ -152,7 +155,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
         near_x.push_back(garment_x[other]);
       }
     planes[gi] = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, options_.threads, obstacle_trees);
-    if (options_.mode == SimMode::View) {
+    if (viewing) {
       auto tv = std::chrono::steady_clock::now();
       views[gi] = std::make_unique<ViewSizing>(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
       views[gi]->evaluate(garments_[gi]);
@@ -170,7 +173,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
   // An unchanged mesh keeps its system (elements, pattern, symbolic factorization) and collider.
   const bool changed = stats.splits + stats.flips + stats.collapses > 0;
   if (changed) rebuild();
-  else if (options_.mode == SimMode::View) {
+  else if (viewing) {
     std::size_t first_face = 0;
     for (const Mesh& mesh : garments_) {
       update_compression(model_, mesh, first_face);

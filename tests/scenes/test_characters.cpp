@@ -151,7 +151,7 @@ TEST_P(CaptureShot, ACaptureDrivesTheGarmentsWithoutCrossings) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Captures, CaptureShot, testing::Values("solo-dancer", "karate"),
-                         [](const testing::TestParamInfo<std::string>& info) { return info.param == "karate" ? "karate" : "solo_dancer"; });
+                         [](const testing::TestParamInfo<std::string>& shot) { return shot.param == "karate" ? "karate" : "solo_dancer"; });
 
 }  // namespace
 }  // namespace vdc
