@@ -127,6 +127,12 @@ OpRecord flip_edge(Mesh& mesh, EdgeId e) {
   return rec;
 }
 
+OpPreview preview_flip(const Mesh& mesh, EdgeId e) {
+  const NodeId n0 = mesh.edge_node(e, 0), n1 = mesh.edge_node(e, 1);
+  const NodeId c = mesh.opposite_node(e, 0), d = mesh.opposite_node(e, 1);
+  return {{mesh.edge_face(e, 0), mesh.edge_face(e, 1)}, {{{n0, d, c}}, {{d, n1, c}}}};
+}
+
 namespace {
 
 // Faces around the removed node rewritten onto the kept node's vert in the same panel; faces
@@ -177,6 +183,13 @@ bool border_allows_collapse(const Mesh& mesh, EdgeId e, NodeId r, double border_
 }
 
 }  // namespace
+
+OpPreview preview_collapse(const Mesh& mesh, EdgeId e, int remove) {
+  OpPreview p;
+  for (const NewFace& nf : collapsed_faces(mesh, e, remove, p.removed))
+    p.made.push_back({mesh.vert_node(nf.v[0]), mesh.vert_node(nf.v[1]), mesh.vert_node(nf.v[2])});
+  return p;
+}
 
 VertId vert_beside(const Mesh& mesh, VertId v, NodeId n) {
   for (FaceId f : mesh.vert_faces(v))

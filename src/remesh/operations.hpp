@@ -4,6 +4,7 @@
 // along their border, carries attributes over and never inverts a face in material or world
 // space.
 #pragma once
+#include <array>
 #include <vector>
 
 #include "core/mesh.hpp"
@@ -40,6 +41,16 @@ OpRecord flip_edge(Mesh& mesh, EdgeId e);
 // new face would be inverted or degenerate in material space or flip its world normal.
 bool can_collapse(const Mesh& mesh, EdgeId e, int remove, double border_sag = 0);
 OpRecord collapse_edge(Mesh& mesh, EdgeId e, int remove, double border_sag = 0);
+
+// What a flip or a collapse would do, found before it is done: the faces it would remove and the
+// faces it would make, as node triples (their world positions are the nodes', which neither
+// operation moves). Call only where can_flip or can_collapse holds.
+struct OpPreview {
+  std::vector<FaceId> removed;
+  std::vector<std::array<NodeId, 3>> made;
+};
+OpPreview preview_flip(const Mesh& mesh, EdgeId e);
+OpPreview preview_collapse(const Mesh& mesh, EdgeId e, int remove);
 
 // The vert of node n that shares a face with vert v (n's vert in v's panel), or invalid.
 VertId vert_beside(const Mesh& mesh, VertId v, NodeId n);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace vdc {
 
@@ -18,15 +19,17 @@ double size2(const Mesh& mesh, VertId a, VertId b) {
 }
 
 // Flips every edge that fails the Delaunay test, sweeping until none does (or the pass bound).
-int flip_all(Mesh& mesh, const RemeshOptions& o) {
+int flip_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
   int flips = 0;
   for (int pass = 0; pass < o.max_passes; ++pass) {
     int this_pass = 0;
     std::vector<EdgeId> edges;
     for (EdgeId e : mesh.edges()) edges.push_back(e);
     for (EdgeId e : edges)
-      if (mesh.alive(e) && should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, e)) {
-        flip_edge(mesh, e);
+      if (mesh.alive(e) && should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, e) &&
+          !(guard && guard->adds_crossings(preview_flip(mesh, e)))) {
+        const OpRecord done = flip_edge(mesh, e);
+        if (guard) guard->add(done);
         ++this_pass;
       }
     flips += this_pass;
@@ -35,7 +38,7 @@ int flip_all(Mesh& mesh, const RemeshOptions& o) {
   return flips;
 }
 
-int split_all(Mesh& mesh, const RemeshOptions& o) {
+int split_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
   int splits = 0;
   auto& m = mesh.vert_attrs().get<Mat2>(kSizingAttr);
   for (int pass = 0; pass < o.max_passes; ++pass) {
@@ -48,6 +51,7 @@ int split_all(Mesh& mesh, const RemeshOptions& o) {
       if (!mesh.alive(e) || edge_size2(mesh, e) <= 1.0) continue;
       // The sizing of a new vert is the mean of the tensors at the ends of its side.
       OpRecord r = split_edge(mesh, e, 0.5);
+      if (guard) guard->add(r);
       for (VertId v : r.added_verts) {
         Mat2 sum = Mat2::Zero();
         int count = 0;
@@ -81,7 +85,7 @@ double collapse_worst(const Mesh& mesh, EdgeId e, int remove) {
 
 // Collapses edges, shortest first, in passes; a pass after the first looks only at the edges
 // around nodes that the previous pass changed (elsewhere nothing can have become collapsible).
-int collapse_all(Mesh& mesh, const RemeshOptions& o) {
+int collapse_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
   int collapses = 0;
   std::vector<EdgeId> pass_edges;
   for (EdgeId e : mesh.edges()) pass_edges.push_back(e);
@@ -97,8 +101,10 @@ int collapse_all(Mesh& mesh, const RemeshOptions& o) {
       if (!mesh.alive(e)) continue;
       for (int remove = 0; remove < 2; ++remove) {
         if (collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove, o.border_sag)) continue;
+        if (guard && guard->adds_crossings(preview_collapse(mesh, e, remove))) continue;
         const NodeId kept = mesh.edge_node(e, 1 - remove);
-        collapse_edge(mesh, e, remove, o.border_sag);
+        const OpRecord done = collapse_edge(mesh, e, remove, o.border_sag);
+        if (guard) guard->add(done);
         ++collapses;
         changed.push_back(kept);
         break;
@@ -157,12 +163,15 @@ bool flip_keeps_valid(const Mesh& mesh, EdgeId e) {
   return size2(mesh, mesh.opposite_vert(e, 0), mesh.opposite_vert(e, 1)) <= 1.0;
 }
 
-RemeshStats remesh(Mesh& mesh, const RemeshOptions& options) {
+RemeshStats remesh(Mesh& mesh, const RemeshOptions& options, const std::vector<Triangle>* neighbours) {
   RemeshStats s;
-  s.splits = split_all(mesh, options);
-  s.flips = flip_all(mesh, options);
-  s.collapses = collapse_all(mesh, options);
-  s.flips += flip_all(mesh, options);
+  std::unique_ptr<CrossingGuard> guard;
+  if (neighbours) guard = std::make_unique<CrossingGuard>(mesh, *neighbours);
+  s.splits = split_all(mesh, options, guard.get());
+  s.flips = flip_all(mesh, options, guard.get());
+  s.collapses = collapse_all(mesh, options, guard.get());
+  s.flips += flip_all(mesh, options, guard.get());
+  if (guard) s.refused = guard->refused();
   mesh.compact();
   return s;
 }

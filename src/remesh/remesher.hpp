@@ -3,6 +3,7 @@
 // Delaunay mesh; collapse every edge whose removal leaves no edge above 1 - margin.
 #pragma once
 #include "core/mesh.hpp"
+#include "remesh/crossing_guard.hpp"
 #include "remesh/operations.hpp"
 
 namespace vdc {
@@ -23,6 +24,7 @@ struct RemeshOptions {
 
 struct RemeshStats {
   int splits = 0, flips = 0, collapses = 0;
+  int refused = 0;  // flips and collapses refused because they would have made cloth cross cloth
 };
 
 // s^2 of an edge: u_ij^T ((M_i + M_j) / 2) u_ij, the largest over the two sides of a seam.
@@ -37,7 +39,9 @@ bool flip_keeps_valid(const Mesh& mesh, EdgeId e);
 
 // Remeshes to the sizing field in the vert attribute kSizingAttr (Mat2). Split verts get the
 // mean of the two ends' tensors. Node positions and velocities of new nodes are interpolated by
-// the split. The mesh is left compact.
-RemeshStats remesh(Mesh& mesh, const RemeshOptions& options = {});
+// the split. The mesh is left compact. Given `neighbours` (the faces of the garments beside this
+// one; empty when there are none), no flip or collapse adds a crossing (CrossingGuard); without,
+// the remesher looks at the material space and the sizing only.
+RemeshStats remesh(Mesh& mesh, const RemeshOptions& options = {}, const std::vector<Triangle>* neighbours = nullptr);
 
 }  // namespace vdc

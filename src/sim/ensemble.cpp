@@ -24,6 +24,7 @@ void accumulate(FrameStats& t, const FrameStats& p) {
   t.proximities += p.proximities;
   t.untangle_moves += p.untangle_moves;
   t.remesh_undone += p.remesh_undone;
+  t.remesh_refused += p.remesh_refused;
   t.visible_faces += p.visible_faces;
   t.back_facing_faces += p.back_facing_faces;
   t.out_of_frame_faces += p.out_of_frame_faces;

@@ -165,10 +165,11 @@ void Simulation::remesh_garments(FrameStats& stats) {
       stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
     }
   }
-  for (const RemeshStats& r : size_and_remesh(views, planes, started_with)) {
+  for (const RemeshStats& r : size_and_remesh(views, planes, obstacle_x, started_with)) {
     stats.splits += r.splits;
     stats.flips += r.flips;
     stats.collapses += r.collapses;
+    stats.remesh_refused += r.refused;
   }
   // An unchanged mesh keeps its system (elements, pattern, symbolic factorization) and collider.
   const bool changed = stats.splits + stats.flips + stats.collapses > 0;
@@ -191,10 +192,24 @@ void Simulation::remesh_garments(FrameStats& stats) {
 // depend on which thread made it.
 std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                                      const std::vector<std::vector<ObstaclePlane>>& planes,
+                                                     const std::vector<std::vector<Vec3>>& obstacle_x,
                                                      std::vector<Mesh>& started_with) {
   const std::size_t count = garments_.size();
   std::vector<double> faces;
   for (const Mesh& mesh : garments_) faces.push_back(mesh.num_faces());
+  // Each garment is kept from crossing the obstacles and the other garments as they stand before
+  // any is remeshed.
+  std::vector<Triangle> obstacles;
+  for (std::size_t o = 0; o < obstacle_faces_.size(); ++o)
+    for (const auto& face : obstacle_faces_[o].faces)
+      obstacles.push_back({obstacle_x[o][static_cast<std::size_t>(face[0])], obstacle_x[o][static_cast<std::size_t>(face[1])],
+                           obstacle_x[o][static_cast<std::size_t>(face[2])]});
+  std::vector<std::vector<Triangle>> standing(count);
+  for (std::size_t g = 0; g < count; ++g)
+    for (FaceId f : garments_[g].faces()) {
+      const Mesh& m = garments_[g];
+      standing[g].push_back({m.x(m.face_node(f, 0)), m.x(m.face_node(f, 1)), m.x(m.face_node(f, 2))});
+    }
   std::vector<RemeshStats> remeshed(count);
   const int team = std::max(1, std::min<int>(options_.threads, static_cast<int>(count)));
   for_each_in_order(largest_first(faces), team, [&](int k) {
@@ -213,7 +228,10 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
       for (FaceId f : mesh.faces()) compression[f] = coarse_compression_factor(coarsening[f]);
     }
     started_with[gi] = mesh;  // sizing moved no node: the frame's start mesh, with this frame's factors
-    remeshed[gi] = remesh(mesh);
+    std::vector<Triangle> neighbours = obstacles;
+    for (std::size_t other = 0; other < count; ++other)
+      if (other != gi) neighbours.insert(neighbours.end(), standing[other].begin(), standing[other].end());
+    remeshed[gi] = remesh(mesh, RemeshOptions{}, &neighbours);
   });
   return remeshed;
 }

@@ -46,6 +46,7 @@ struct FrameStats {
   double assemble_seconds = 0, solve_seconds = 0;
   double remesh_seconds = 0;  // sizing, remeshing and rebuilding the system (adaptive mode)
   int splits = 0, flips = 0, collapses = 0;
+  int remesh_refused = 0;  // flips and collapses refused because they would make cloth cross cloth
   int proximities = 0;  // most proximity pairs in one step of the frame
   int untangle_moves = 0;  // vertex moves of untangling (after remeshing)
   int remesh_undone = 0;   // 1: remeshing made crossings untangling could not remove, so the
@@ -104,9 +105,11 @@ class Simulation {
   void rebuild();                       // elements, assembler and solver from the meshes
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
-  // `started_with` (one slot a garment): the fallback goes on with this frame's factors.
+  // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip
+  // or collapse makes a garment cross the obstacles (at `obstacle_x`) or another garment.
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                            const std::vector<std::vector<ObstaclePlane>>& planes,
+                                           const std::vector<std::vector<Vec3>>& obstacle_x,
                                            std::vector<Mesh>& started_with);
   // Removes interpenetrations of x_ at the current time (the steps' working vectors).
   UntangleReport untangle_cloth(FrameStats& stats);

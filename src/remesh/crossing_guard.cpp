@@ -1,0 +1,92 @@
+// Flips and collapses refused where they would make cloth cross cloth (the crossing count of
+// Volino and Magnenat-Thalmann 2006, kept from rising while remeshing, Narain et al. 2012 sec. 4).
+#include "remesh/crossing_guard.hpp"
+
+#include <algorithm>
+
+#include "collision/intersection.hpp"
+
+namespace vdc {
+
+namespace {
+
+// Faces made since the last build of the garment's tree are searched one by one up to this many.
+constexpr std::size_t kRecentBound = 256;
+
+Aabb box_of(const Triangle& t) {
+  Aabb b;
+  for (const Vec3& p : t) b.grow(p);
+  return b;
+}
+
+std::vector<Aabb> boxes_of(const std::vector<Triangle>& triangles) {
+  std::vector<Aabb> boxes;
+  boxes.reserve(triangles.size());
+  for (const Triangle& t : triangles) boxes.push_back(box_of(t));
+  return boxes;
+}
+
+bool shares_node(const Mesh& mesh, FaceId f, const std::array<NodeId, 3>& nodes) {
+  for (int k = 0; k < 3; ++k) {
+    const NodeId n = mesh.face_node(f, k);
+    if (n == nodes[0] || n == nodes[1] || n == nodes[2]) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+CrossingGuard::CrossingGuard(const Mesh& mesh, std::vector<Triangle> neighbours)
+    : mesh_(mesh), neighbours_(std::move(neighbours)), neighbour_tree_(boxes_of(neighbours_)) {
+  reindex();
+}
+
+Triangle CrossingGuard::triangle(FaceId f) const {
+  return {mesh_.x(mesh_.face_node(f, 0)), mesh_.x(mesh_.face_node(f, 1)), mesh_.x(mesh_.face_node(f, 2))};
+}
+
+void CrossingGuard::reindex() {
+  indexed_.clear();
+  std::vector<Triangle> triangles;
+  for (FaceId f : mesh_.faces()) {
+    indexed_.push_back(f);
+    triangles.push_back(triangle(f));
+  }
+  own_tree_ = std::make_unique<Bvh>(boxes_of(triangles));
+  recent_.clear();
+}
+
+void CrossingGuard::add(const OpRecord& done) {
+  recent_.insert(recent_.end(), done.added_faces.begin(), done.added_faces.end());
+  if (recent_.size() > kRecentBound) reindex();
+}
+
+int CrossingGuard::crossings_of(const Triangle& t, const std::array<NodeId, 3>& nodes, const std::vector<FaceId>& skip) {
+  const Aabb box = box_of(t);
+  int count = 0;
+  auto test_own = [&](FaceId f) {
+    if (!mesh_.alive(f) || shares_node(mesh_, f, nodes) || std::find(skip.begin(), skip.end(), f) != skip.end()) return;
+    if (triangles_intersect(t, triangle(f))) ++count;
+  };
+  own_tree_->query(box, [&](int32_t i) { test_own(indexed_[static_cast<std::size_t>(i)]); });
+  for (FaceId f : recent_)
+    if (mesh_.alive(f) && box_of(triangle(f)).overlaps(box)) test_own(f);
+  neighbour_tree_.query(box, [&](int32_t i) {
+    if (triangles_intersect(t, neighbours_[static_cast<std::size_t>(i)])) ++count;
+  });
+  return count;
+}
+
+bool CrossingGuard::adds_crossings(const OpPreview& op) {
+  int made = 0;
+  for (const auto& nodes : op.made) made += crossings_of({mesh_.x(nodes[0]), mesh_.x(nodes[1]), mesh_.x(nodes[2])}, nodes, op.removed);
+  if (made == 0) return false;
+  int removed = 0;
+  for (FaceId f : op.removed)
+    removed += crossings_of(triangle(f), {mesh_.face_node(f, 0), mesh_.face_node(f, 1), mesh_.face_node(f, 2)}, op.removed);
+  if (made <= removed) return false;
+  ++refused_;
+  return true;
+}
+
+}  // namespace vdc
