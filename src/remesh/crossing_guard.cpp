@@ -10,7 +10,8 @@ namespace vdc {
 
 namespace {
 
-// Faces made since the last build of the garment's tree are searched one by one up to this many.
+// Faces made since the last build of the garment's tree are searched one by one, up to this
+// many or an eighth of the tree's, whichever is more.
 constexpr std::size_t kRecentBound = 256;
 
 Aabb box_of(const Triangle& t) {
@@ -54,11 +55,15 @@ void CrossingGuard::reindex() {
   }
   own_tree_ = std::make_unique<Bvh>(boxes_of(triangles));
   recent_.clear();
+  recent_boxes_.clear();
 }
 
 void CrossingGuard::add(const OpRecord& done) {
-  recent_.insert(recent_.end(), done.added_faces.begin(), done.added_faces.end());
-  if (recent_.size() > kRecentBound) reindex();
+  for (FaceId f : done.added_faces) {
+    recent_.push_back(f);
+    recent_boxes_.push_back(box_of(triangle(f)));
+  }
+  if (recent_.size() > std::max(kRecentBound, indexed_.size() / 8)) reindex();
 }
 
 int CrossingGuard::crossings_of(const Triangle& t, const std::array<NodeId, 3>& nodes, const std::vector<FaceId>& skip) {
@@ -69,8 +74,8 @@ int CrossingGuard::crossings_of(const Triangle& t, const std::array<NodeId, 3>& 
     if (triangles_intersect(t, triangle(f))) ++count;
   };
   own_tree_->query(box, [&](int32_t i) { test_own(indexed_[static_cast<std::size_t>(i)]); });
-  for (FaceId f : recent_)
-    if (mesh_.alive(f) && box_of(triangle(f)).overlaps(box)) test_own(f);
+  for (std::size_t i = 0; i < recent_.size(); ++i)
+    if (recent_boxes_[i].overlaps(box)) test_own(recent_[i]);
   neighbour_tree_.query(box, [&](int32_t i) {
     if (triangles_intersect(t, neighbours_[static_cast<std::size_t>(i)])) ++count;
   });

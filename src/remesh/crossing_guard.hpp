@@ -34,7 +34,7 @@ class CrossingGuard {
   // Intersecting pairs of triangle t (nodes `nodes`) with the guarded faces other than `skip`.
   int crossings_of(const Triangle& t, const std::array<NodeId, 3>& nodes, const std::vector<FaceId>& skip);
   Triangle triangle(FaceId f) const;
-  void reindex();
+  void reindex();  // builds the tree over the garment's live faces
 
   const Mesh& mesh_;
   std::vector<Triangle> neighbours_;
@@ -42,6 +42,7 @@ class CrossingGuard {
   std::vector<FaceId> indexed_;   // the garment's faces in own_tree_, in its leaf order
   std::unique_ptr<Bvh> own_tree_;
   std::vector<FaceId> recent_;    // faces made since the tree was built, searched one by one
+  std::vector<Aabb> recent_boxes_;
   int refused_ = 0;
 };
 

@@ -38,7 +38,7 @@ int flip_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
   return flips;
 }
 
-int split_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
+int split_all(Mesh& mesh, const RemeshOptions& o) {
   int splits = 0;
   auto& m = mesh.vert_attrs().get<Mat2>(kSizingAttr);
   for (int pass = 0; pass < o.max_passes; ++pass) {
@@ -51,7 +51,6 @@ int split_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
       if (!mesh.alive(e) || edge_size2(mesh, e) <= 1.0) continue;
       // The sizing of a new vert is the mean of the tensors at the ends of its side.
       OpRecord r = split_edge(mesh, e, 0.5);
-      if (guard) guard->add(r);
       for (VertId v : r.added_verts) {
         Mat2 sum = Mat2::Zero();
         int count = 0;
@@ -165,9 +164,10 @@ bool flip_keeps_valid(const Mesh& mesh, EdgeId e) {
 
 RemeshStats remesh(Mesh& mesh, const RemeshOptions& options, const std::vector<Triangle>* neighbours) {
   RemeshStats s;
+  s.splits = split_all(mesh, options);
+  // Splits do not move the surface: the guard starts from the split mesh.
   std::unique_ptr<CrossingGuard> guard;
   if (neighbours) guard = std::make_unique<CrossingGuard>(mesh, *neighbours);
-  s.splits = split_all(mesh, options, guard.get());
   s.flips = flip_all(mesh, options, guard.get());
   s.collapses = collapse_all(mesh, options, guard.get());
   s.flips += flip_all(mesh, options, guard.get());
