@@ -37,8 +37,11 @@ bool shares_node(const Mesh& mesh, FaceId f, const std::array<NodeId, 3>& nodes)
 
 }  // namespace
 
-CrossingGuard::CrossingGuard(const Mesh& mesh, std::vector<Triangle> neighbours)
-    : mesh_(mesh), neighbours_(std::move(neighbours)), neighbour_tree_(boxes_of(neighbours_)) {
+StandingSurfaces::StandingSurfaces(std::vector<Triangle> t, std::vector<int> o)
+    : triangles(std::move(t)), owners(std::move(o)), tree(boxes_of(triangles)) {}
+
+CrossingGuard::CrossingGuard(const Mesh& mesh, const StandingSurfaces& standing, int self)
+    : mesh_(mesh), standing_(standing), self_(self) {
   reindex();
 }
 
@@ -76,8 +79,9 @@ int CrossingGuard::crossings_of(const Triangle& t, const std::array<NodeId, 3>& 
   own_tree_->query(box, [&](int32_t i) { test_own(indexed_[static_cast<std::size_t>(i)]); });
   for (std::size_t i = 0; i < recent_.size(); ++i)
     if (recent_boxes_[i].overlaps(box)) test_own(recent_[i]);
-  neighbour_tree_.query(box, [&](int32_t i) {
-    if (triangles_intersect(t, neighbours_[static_cast<std::size_t>(i)])) ++count;
+  standing_.tree.query(box, [&](int32_t i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (standing_.owners[k] != self_ && triangles_intersect(t, standing_.triangles[k])) ++count;
   });
   return count;
 }

@@ -15,11 +15,21 @@ namespace vdc {
 
 using Triangle = std::array<Vec3, 3>;
 
+// What the garments being remeshed must not cross, as it stands at the frame's start: the
+// obstacles' faces and every garment's, with the garment each belongs to (-1: an obstacle). Built
+// once a frame and shared by the garments remeshed side by side.
+struct StandingSurfaces {
+  StandingSurfaces(std::vector<Triangle> triangles, std::vector<int> owners);
+  std::vector<Triangle> triangles;
+  std::vector<int> owners;
+  Bvh tree;
+};
+
 class CrossingGuard {
  public:
-  // `mesh` is the garment being remeshed, its faces as they stand; `neighbours` the faces of the
-  // garments it may touch, fixed while it is remeshed.
-  CrossingGuard(const Mesh& mesh, std::vector<Triangle> neighbours);
+  // `mesh` is garment `self` of `standing`, being remeshed: its own faces are looked at as they
+  // change, those of the others in `standing` as they stood.
+  CrossingGuard(const Mesh& mesh, const StandingSurfaces& standing, int self);
   CrossingGuard(const CrossingGuard&) = delete;
   CrossingGuard& operator=(const CrossingGuard&) = delete;
 
@@ -37,8 +47,8 @@ class CrossingGuard {
   void reindex();  // builds the tree over the garment's live faces
 
   const Mesh& mesh_;
-  std::vector<Triangle> neighbours_;
-  Bvh neighbour_tree_;
+  const StandingSurfaces& standing_;
+  int self_;
   std::vector<FaceId> indexed_;   // the garment's faces in own_tree_, in its leaf order
   std::unique_ptr<Bvh> own_tree_;
   std::vector<FaceId> recent_;    // faces made since the tree was built, searched one by one

@@ -162,12 +162,12 @@ bool flip_keeps_valid(const Mesh& mesh, EdgeId e) {
   return size2(mesh, mesh.opposite_vert(e, 0), mesh.opposite_vert(e, 1)) <= 1.0;
 }
 
-RemeshStats remesh(Mesh& mesh, const RemeshOptions& options, const std::vector<Triangle>* neighbours) {
+RemeshStats remesh(Mesh& mesh, const RemeshOptions& options, const StandingSurfaces* standing, int self) {
   RemeshStats s;
   s.splits = split_all(mesh, options);
   // Splits do not move the surface: the guard starts from the split mesh.
   std::unique_ptr<CrossingGuard> guard;
-  if (neighbours) guard = std::make_unique<CrossingGuard>(mesh, *neighbours);
+  if (standing) guard = std::make_unique<CrossingGuard>(mesh, *standing, self);
   s.flips = flip_all(mesh, options, guard.get());
   s.collapses = collapse_all(mesh, options, guard.get());
   s.flips += flip_all(mesh, options, guard.get());

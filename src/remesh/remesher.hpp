@@ -39,9 +39,9 @@ bool flip_keeps_valid(const Mesh& mesh, EdgeId e);
 
 // Remeshes to the sizing field in the vert attribute kSizingAttr (Mat2). Split verts get the
 // mean of the two ends' tensors. Node positions and velocities of new nodes are interpolated by
-// the split. The mesh is left compact. Given `neighbours` (the faces of the garments beside this
-// one; empty when there are none), no flip or collapse adds a crossing (CrossingGuard); without,
-// the remesher looks at the material space and the sizing only.
-RemeshStats remesh(Mesh& mesh, const RemeshOptions& options = {}, const std::vector<Triangle>* neighbours = nullptr);
+// the split. The mesh is left compact. Given `standing` (what the garments and obstacles were at
+// the frame's start, the mesh being garment `self` of it), no flip or collapse adds a crossing
+// (CrossingGuard); without, the remesher looks at the material space and the sizing only.
+RemeshStats remesh(Mesh& mesh, const RemeshOptions& options = {}, const StandingSurfaces* standing = nullptr, int self = -1);
 
 }  // namespace vdc

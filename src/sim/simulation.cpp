@@ -199,17 +199,22 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
   for (const Mesh& mesh : garments_) faces.push_back(mesh.num_faces());
   // Each garment is kept from crossing the obstacles and the other garments as they stand before
   // any is remeshed.
-  std::vector<Triangle> obstacles;
+  std::vector<Triangle> triangles;
+  std::vector<int> owners;
   for (std::size_t o = 0; o < obstacle_faces_.size(); ++o)
-    for (const auto& face : obstacle_faces_[o].faces)
-      obstacles.push_back({obstacle_x[o][static_cast<std::size_t>(face[0])], obstacle_x[o][static_cast<std::size_t>(face[1])],
+    for (const auto& face : obstacle_faces_[o].faces) {
+      triangles.push_back({obstacle_x[o][static_cast<std::size_t>(face[0])], obstacle_x[o][static_cast<std::size_t>(face[1])],
                            obstacle_x[o][static_cast<std::size_t>(face[2])]});
-  std::vector<std::vector<Triangle>> standing(count);
-  for (std::size_t g = 0; g < count; ++g)
-    for (FaceId f : garments_[g].faces()) {
-      const Mesh& m = garments_[g];
-      standing[g].push_back({m.x(m.face_node(f, 0)), m.x(m.face_node(f, 1)), m.x(m.face_node(f, 2))});
+      owners.push_back(-1);
     }
+  for (std::size_t g = 0; g < count; ++g) {
+    const Mesh& m = garments_[g];
+    for (FaceId f : m.faces()) {
+      triangles.push_back({m.x(m.face_node(f, 0)), m.x(m.face_node(f, 1)), m.x(m.face_node(f, 2))});
+      owners.push_back(static_cast<int>(g));
+    }
+  }
+  const StandingSurfaces standing(std::move(triangles), std::move(owners));
   std::vector<RemeshStats> remeshed(count);
   const int team = std::max(1, std::min<int>(options_.threads, static_cast<int>(count)));
   for_each_in_order(largest_first(faces), team, [&](int k) {
@@ -228,10 +233,7 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
       for (FaceId f : mesh.faces()) compression[f] = coarse_compression_factor(coarsening[f]);
     }
     started_with[gi] = mesh;  // sizing moved no node: the frame's start mesh, with this frame's factors
-    std::vector<Triangle> neighbours = obstacles;
-    for (std::size_t other = 0; other < count; ++other)
-      if (other != gi) neighbours.insert(neighbours.end(), standing[other].begin(), standing[other].end());
-    remeshed[gi] = remesh(mesh, RemeshOptions{}, &neighbours);
+    remeshed[gi] = remesh(mesh, RemeshOptions{}, &standing, static_cast<int>(gi));
   });
   return remeshed;
 }

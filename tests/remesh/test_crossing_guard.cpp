@@ -37,6 +37,18 @@ int crossings_with(const Mesh& mesh, const std::vector<Triangle>& others) {
   return count_intersections_between(face_nodes(mesh), positions(mesh), faces, x);
 }
 
+// Loose triangles as an obstacle's.
+StandingSurfaces obstacle(std::vector<Triangle> triangles) {
+  std::vector<int> owners(triangles.size(), -1);
+  return StandingSurfaces(std::move(triangles), std::move(owners));
+}
+
+std::vector<Triangle> triangles_of(const Mesh& mesh) {
+  std::vector<Triangle> t;
+  for (FaceId f : mesh.faces()) t.push_back({mesh.x(mesh.face_node(f, 0)), mesh.x(mesh.face_node(f, 1)), mesh.x(mesh.face_node(f, 2))});
+  return t;
+}
+
 // A unit square folded along its diagonal n0 = (0,0,0) to n1 = (1,1,0), the other corners lifted
 // to z = h: a valley. Flipping to the other diagonal turns it into a ridge at z = h.
 constexpr double kFold = 0.1;
@@ -57,9 +69,10 @@ TEST(CrossingGuard, RefusesAFlipThatCutsThroughALayer) {
   const EdgeId e = mesh.find_edge(NodeId(0), NodeId(2));
   ASSERT_TRUE(can_flip(mesh, e));
   EXPECT_EQ(crossings_with(mesh, {under_the_ridge()}), 0);
-  CrossingGuard clear(mesh, {});
+  const StandingSurfaces nothing = obstacle({}), layer = obstacle({under_the_ridge()});
+  CrossingGuard clear(mesh, nothing, 0);
   EXPECT_FALSE(clear.adds_crossings(preview_flip(mesh, e)));
-  CrossingGuard guard(mesh, {under_the_ridge()});
+  CrossingGuard guard(mesh, layer, 0);
   EXPECT_TRUE(guard.adds_crossings(preview_flip(mesh, e)));
   EXPECT_EQ(guard.refused(), 1);
   // Done anyway, the flip makes the one crossing pair the guard foresaw.
@@ -74,7 +87,8 @@ TEST(CrossingGuard, ComparesWithTheCrossingsTheOperationRemoves) {
   const EdgeId e = mesh.find_edge(NodeId(0), NodeId(2));
   const Triangle post = {Vec3(0.57, 0.17, -1), Vec3(0.63, 0.17, -1), Vec3(0.6, 0.23, 2)};
   ASSERT_EQ(crossings_with(mesh, {post}), 1);
-  CrossingGuard guard(mesh, {post});
+  const StandingSurfaces standing = obstacle({post});
+  CrossingGuard guard(mesh, standing, 0);
   EXPECT_FALSE(guard.adds_crossings(preview_flip(mesh, e)));
   flip_edge(mesh, e);
   EXPECT_EQ(crossings_with(mesh, {post}), 1);
@@ -103,9 +117,10 @@ TEST(CrossingGuard, RefusesACollapseThatFlattensATentThroughAPost) {
     }
   }
   ASSERT_TRUE(e.valid());
-  CrossingGuard clear(mesh, {});
+  const StandingSurfaces nothing = obstacle({}), standing = obstacle({post});
+  CrossingGuard clear(mesh, nothing, 0);
   EXPECT_FALSE(clear.adds_crossings(preview_collapse(mesh, e, remove)));
-  CrossingGuard guard(mesh, {post});
+  CrossingGuard guard(mesh, standing, 0);
   EXPECT_TRUE(guard.adds_crossings(preview_collapse(mesh, e, remove)));
   collapse_edge(mesh, e, remove);
   EXPECT_GE(crossings_with(mesh, {post}), 1);
@@ -121,12 +136,31 @@ TEST(CrossingGuard, SeesTheFacesOperationsMade) {
   s.faces = {{{{0, 0}, {1, 1}, {2, 2}}}, {{{0, 0}, {2, 2}, {3, 3}}}, {{{4, 4}, {5, 5}, {6, 6}}}};
   Mesh mesh = build_mesh(s);
   const EdgeId e = mesh.find_edge(NodeId(0), NodeId(2));
-  CrossingGuard guard(mesh, {});
+  const StandingSurfaces nothing = obstacle({});
+  CrossingGuard guard(mesh, nothing, 0);
   EXPECT_TRUE(guard.adds_crossings(preview_flip(mesh, e)));
   guard.add(split_edge(mesh, mesh.find_edge(NodeId(4), NodeId(5))));
   guard.add(split_edge(mesh, mesh.find_edge(NodeId(5), NodeId(6))));
   EXPECT_TRUE(guard.adds_crossings(preview_flip(mesh, e)));
   EXPECT_EQ(guard.refused(), 2);
+}
+
+TEST(CrossingGuard, LooksAtTheGarmentsOwnStandingFacesAsTheyChange) {
+  // The standing surfaces hold the garment's own faces too (owner 0); the guard of garment 0
+  // looks at its live faces instead, and the valley's flip crosses nothing of them. The layer
+  // under the ridge, as garment 1's, is looked at.
+  Mesh mesh = valley();
+  const EdgeId e = mesh.find_edge(NodeId(0), NodeId(2));
+  std::vector<Triangle> triangles = triangles_of(mesh);
+  std::vector<int> owners(triangles.size(), 0);
+  const StandingSurfaces alone(triangles, owners);
+  CrossingGuard guard(mesh, alone, 0);
+  EXPECT_FALSE(guard.adds_crossings(preview_flip(mesh, e)));
+  triangles.push_back(under_the_ridge());
+  owners.push_back(1);
+  const StandingSurfaces beside(triangles, owners);
+  CrossingGuard guard_beside(mesh, beside, 0);
+  EXPECT_TRUE(guard_beside.adds_crossings(preview_flip(mesh, e)));
 }
 
 // A 1 m sheet of 20 x 20 cells corrugated along u (height A cos(2 pi u / 0.5)) above a copy of
@@ -139,18 +173,18 @@ Mesh corrugated(double drop) {
 
 TEST(CrossingGuard, CoarseningSheetStaysClearOfTheLayerBelow) {
   const Mesh below = corrugated(0.01);
-  std::vector<Triangle> layer;
-  for (FaceId f : below.faces()) layer.push_back({below.x(below.face_node(f, 0)), below.x(below.face_node(f, 1)), below.x(below.face_node(f, 2))});
-  auto coarsened = [&](const std::vector<Triangle>* neighbours, RemeshStats& stats) {
+  const std::vector<Triangle> layer = triangles_of(below);
+  const StandingSurfaces standing = obstacle(layer);
+  auto coarsened = [&](const StandingSurfaces* neighbours, RemeshStats& stats) {
     Mesh mesh = corrugated(0);
     auto& s = mesh.vert_attrs().add<Mat2>(kSizingAttr, Mat2::Identity());
     for (VertId v : mesh.verts()) s[v] = Mat2::Identity() / (0.5 * 0.5);
-    stats = remesh(mesh, RemeshOptions{}, neighbours);
+    stats = remesh(mesh, RemeshOptions{}, neighbours, 0);
     return mesh;
   };
   RemeshStats free_stats, guarded_stats;
   const Mesh free = coarsened(nullptr, free_stats);
-  const Mesh guarded = coarsened(&layer, guarded_stats);
+  const Mesh guarded = coarsened(&standing, guarded_stats);
   ASSERT_EQ(crossings_with(corrugated(0), layer), 0);
   EXPECT_GT(crossings_with(free, layer), 0) << "the unguarded remesh must cross, or the test shows nothing";
   EXPECT_EQ(free_stats.refused, 0);
