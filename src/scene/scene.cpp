@@ -78,9 +78,9 @@ Vec3 recentering(const Motion& motion, int frame) {
 // A capture whose first pose is further than this from the dressing pose (m, any joint) gets
 // kDefaultPreroll seconds of pre-roll unless its scene says otherwise.
 constexpr double kStillDistance = 0.01, kDefaultPreroll = 1.0, kLongestPreroll = 60.0;
-// What a character's arms keep from its body by default, beyond the cloth between them, and from
-// what its garments' handles hold (m; build_clearing_arms, GarmentFit::ease_clearing_arms), and
-// how far apart in time the poses they are checked in are (s).
+// What a character's arms keep from its body by default and from what its garments' handles
+// hold (m; build_clearing_arms, GarmentFit::ease_clearing_arms), and how far apart in time the
+// poses they are checked in are (s).
 constexpr double kArmClearance = 0.01, kPoseSampleTime = 1.0 / 30;
 
 // Runs a loader of a referenced file; its errors keep their own file and line and gain the key path.
@@ -415,17 +415,11 @@ std::string missing_joint(const Skeleton& skeleton, const std::string& joint) {
 }
 
 // `shot` is the scene's length (s): a character's build looks at the poses it takes in the shot.
-// `garments` and `thickness` give the cloth a character's arms may press against its body: two
-// collision thicknesses for each garment that collides with it (of its group, or any when it has
-// none), which its default build leaves room for.
-ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time, double shot,
-                            const std::vector<GarmentSpec>& garments, double thickness) {
+ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time, double shot) {
   j.only_keys({"name", "group", "mesh", "character", "transform", "motion"});
   ObstacleSpec o;
   o.name = j.at("name").string();
   o.group = j.string_or("group", "");
-  const auto layers = std::count_if(garments.begin(), garments.end(), [&](const GarmentSpec& g) { return o.group.empty() || g.group == o.group; });
-  const double cloth_between = 2 * thickness * static_cast<double>(layers);
   if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
   if (auto c = j.find("character")) {
     // The character places itself (its transform applies to the skinned body every frame).
@@ -487,14 +481,13 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
     if (body.resolution < 0.005) c->at("resolution").fail("must be at least 0.005 m");
     const double start = c->number_or("start", 0.0), speed = c->positive_or("speed", 1.0);
     // By default as built as the project's figure, or slimmer if its arms would otherwise pass
-    // through its body, or pinch the garments between them and the body, where the garments are
-    // put on or anywhere in the shot.
+    // through its body where the garments are put on or anywhere in the shot.
     if (c->has("build")) {
       body.build = c->at("build").positive();
     } else {
       std::vector<Pose> poses = clip_poses(MotionClip{&motion, start, speed}, 0.0, shot, kPoseSampleTime);
       poses.push_back(*dressing.pose);
-      body.build = build_clearing_arms(motion, poses, kArmClearance + cloth_between);
+      body.build = build_clearing_arms(motion, poses, kArmClearance);
     }
     const Transform placement = j.has("transform") ? parse_transform(j.at("transform")) : Transform{};
     o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed, std::move(skin), std::move(dressing));
@@ -687,7 +680,7 @@ Scene load_scene(const std::string& path) {
   if (s.garments.empty()) j.at("garments").fail("a scene needs at least one garment");
   if (auto obs = j.find("obstacles"))
     for (const JsonValue& o : obs->items()) {
-      s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time, s.garments, s.collision.thickness));
+      s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time));
       check_name(o.at("name"), s.obstacles.back().name, names);
     }
   // The run starts before the shot by the longest pre-roll, characters in their dressing poses,
