@@ -143,6 +143,19 @@ void Simulation::remesh_garments(FrameStats& stats) {
     for (NodeId n : mesh.nodes()) x[static_cast<std::size_t>(n.idx)] = mesh.x(n);
     garment_x.push_back(std::move(x));
   }
+  // Each garment is kept from crossing the obstacles and the other garments as they stand before
+  // any is remeshed.
+  std::vector<Triangle> triangles;
+  std::vector<int> owners;
+  auto stand = [&](const CollisionMesh& mesh, const std::vector<Vec3>& x, int owner) {
+    for (const auto& face : mesh.faces) {
+      triangles.push_back({x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])], x[static_cast<std::size_t>(face[2])]});
+      owners.push_back(owner);
+    }
+  };
+  for (std::size_t o = 0; o < obstacle_faces_.size(); ++o) stand(obstacle_faces_[o], obstacle_x[o], -1);
+  for (std::size_t g = 0; g < garments_.size(); ++g) stand(garment_meshes[g], garment_x[g], static_cast<int>(g));
+  const StandingSurfaces standing(std::move(triangles), std::move(owners));
   const std::size_t count = garments_.size();
   std::vector<std::vector<ObstaclePlane>> planes(count);
   std::vector<std::unique_ptr<ViewSizing>> views(count);
@@ -165,7 +178,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
       stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
     }
   }
-  for (const RemeshStats& r : size_and_remesh(views, planes, obstacle_x, started_with)) {
+  for (const RemeshStats& r : size_and_remesh(views, planes, standing, started_with)) {
     stats.splits += r.splits;
     stats.flips += r.flips;
     stats.collapses += r.collapses;
@@ -192,29 +205,10 @@ void Simulation::remesh_garments(FrameStats& stats) {
 // depend on which thread made it.
 std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                                      const std::vector<std::vector<ObstaclePlane>>& planes,
-                                                     const std::vector<std::vector<Vec3>>& obstacle_x,
-                                                     std::vector<Mesh>& started_with) {
+                                                     const StandingSurfaces& standing, std::vector<Mesh>& started_with) {
   const std::size_t count = garments_.size();
   std::vector<double> faces;
   for (const Mesh& mesh : garments_) faces.push_back(mesh.num_faces());
-  // Each garment is kept from crossing the obstacles and the other garments as they stand before
-  // any is remeshed.
-  std::vector<Triangle> triangles;
-  std::vector<int> owners;
-  for (std::size_t o = 0; o < obstacle_faces_.size(); ++o)
-    for (const auto& face : obstacle_faces_[o].faces) {
-      triangles.push_back({obstacle_x[o][static_cast<std::size_t>(face[0])], obstacle_x[o][static_cast<std::size_t>(face[1])],
-                           obstacle_x[o][static_cast<std::size_t>(face[2])]});
-      owners.push_back(-1);
-    }
-  for (std::size_t g = 0; g < count; ++g) {
-    const Mesh& m = garments_[g];
-    for (FaceId f : m.faces()) {
-      triangles.push_back({m.x(m.face_node(f, 0)), m.x(m.face_node(f, 1)), m.x(m.face_node(f, 2))});
-      owners.push_back(static_cast<int>(g));
-    }
-  }
-  const StandingSurfaces standing(std::move(triangles), std::move(owners));
   std::vector<RemeshStats> remeshed(count);
   const int team = std::max(1, std::min<int>(options_.threads, static_cast<int>(count)));
   for_each_in_order(largest_first(faces), team, [&](int k) {

@@ -106,11 +106,10 @@ class Simulation {
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
   // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip
-  // or collapse makes a garment cross the obstacles (at `obstacle_x`) or another garment.
+  // or collapse makes a garment cross the obstacles or another garment as they were `standing`.
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                            const std::vector<std::vector<ObstaclePlane>>& planes,
-                                           const std::vector<std::vector<Vec3>>& obstacle_x,
-                                           std::vector<Mesh>& started_with);
+                                           const StandingSurfaces& standing, std::vector<Mesh>& started_with);
   // Removes interpenetrations of x_ at the current time (the steps' working vectors).
   UntangleReport untangle_cloth(FrameStats& stats);
   // The same on the garments' meshes (start-up, after remeshing): gathered, untangled, scattered.

@@ -22,21 +22,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A 20 cm square of cloth wrapped onto a sphere of 10 cm radius (distances from the square's
-// centre kept along each meridian, 6 mm off the surface), in 10 x 10 cells of 2 cm: chords that
-// short dip 0.5 mm, so the wrapped cap crosses nothing. OBJ text, world positions and material
-// coordinates.
-std::string wrapped_cap_obj() {
-  const int cells = 10;
-  const double side = 0.2, radius = 0.106;
+// A square of cloth `side` wide in cells x cells cells of two triangles, as OBJ text: material
+// coordinates (du, dv) + side / 2, world position place(du, dv) for du, dv from the centre.
+template <class Place>
+std::string square_obj(int cells, double side, Place&& place) {
   std::ostringstream obj;
   obj << std::setprecision(17);
   for (int j = 0; j <= cells; ++j)
     for (int i = 0; i <= cells; ++i) {
       const double du = side * i / cells - side / 2, dv = side * j / cells - side / 2;
-      const double theta = std::hypot(du, dv) / radius, phi = std::atan2(dv, du);
-      obj << "v " << radius * std::sin(theta) * std::cos(phi) << " " << radius * std::cos(theta) << " "
-          << -radius * std::sin(theta) * std::sin(phi) << "\nvt " << du + side / 2 << " " << dv + side / 2 << "\n";
+      const Vec3 x = place(du, dv);
+      obj << "v " << x.x() << " " << x.y() << " " << x.z() << "\nvt " << du + side / 2 << " " << dv + side / 2 << "\n";
     }
   auto id = [&](int i, int j) { return j * (cells + 1) + i + 1; };
   for (int j = 0; j < cells; ++j)
@@ -46,6 +42,17 @@ std::string wrapped_cap_obj() {
       obj << "f " << a << "/" << a << " " << c << "/" << c << " " << d << "/" << d << "\n";
     }
   return obj.str();
+}
+
+// A 20 cm square of cloth wrapped onto a sphere of 10 cm radius (distances from the square's
+// centre kept along each meridian, 6 mm off the surface), in 10 x 10 cells of 2 cm: chords that
+// short dip 0.5 mm, so the wrapped cap crosses nothing.
+std::string wrapped_cap_obj() {
+  const double radius = 0.106;
+  return square_obj(10, 0.2, [&](double du, double dv) {
+    const double theta = std::hypot(du, dv) / radius, phi = std::atan2(dv, du);
+    return Vec3(radius * std::sin(theta) * std::cos(phi), radius * std::cos(theta), -radius * std::sin(theta) * std::sin(phi));
+  });
 }
 
 fs::path scene_dir(const std::string& tag) {
@@ -94,23 +101,7 @@ TEST(RemeshGuard, ACapCoarsensOnlyWhereItsChordsStayOutOfTheSphere) {
 // A flat 20 cm sheet of 4 x 4 cells at 9.5 cm above the centre of the 10 cm sphere: it cuts the
 // sphere's top in a circle of 3 cm radius from the start, and untangling is allowed no pass.
 std::string sheet_through_sphere_obj() {
-  const int cells = 4;
-  const double side = 0.2;
-  std::ostringstream obj;
-  obj << std::setprecision(17);
-  for (int j = 0; j <= cells; ++j)
-    for (int i = 0; i <= cells; ++i) {
-      const double u = side * i / cells, v = side * j / cells;
-      obj << "v " << u - side / 2 << " 0.095 " << side / 2 - v << "\nvt " << u << " " << v << "\n";
-    }
-  auto id = [&](int i, int j) { return j * (cells + 1) + i + 1; };
-  for (int j = 0; j < cells; ++j)
-    for (int i = 0; i < cells; ++i) {
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      obj << "f " << a << "/" << a << " " << b << "/" << b << " " << c << "/" << c << "\n";
-      obj << "f " << a << "/" << a << " " << c << "/" << c << " " << d << "/" << d << "\n";
-    }
-  return obj.str();
+  return square_obj(4, 0.2, [](double du, double dv) { return Vec3(du, 0.095, -dv); });
 }
 
 // Asked for 1 cm edges, the remesh splits the faces that cross the sphere into many: more
