@@ -8,8 +8,37 @@
 
 namespace vdc {
 
+namespace {
+
+// Whether a surface point lies within `distance` of p on the far side of p from its nearest
+// obstacle point (in the open half-space the plane's normal points into).
+bool held_from_far_side(const Vec3& p, const ObstaclePlane& plane, const std::vector<CollisionMesh>& obstacles,
+                        const std::vector<std::vector<Vec3>>& obstacle_x, const std::vector<const Bvh*>& trees, double distance) {
+  Aabb box;
+  box.grow(p);
+  box.pad(distance);
+  bool held = false;
+  for (std::size_t o = 0; o < obstacles.size() && !held; ++o) {
+    const auto& ox = obstacle_x[o];
+    const auto& faces = obstacles[o].faces;
+    trees[o]->query(box, [&](int32_t fi) {
+      if (held) return;
+      const auto& face = faces[static_cast<std::size_t>(fi)];
+      const Vec3& a = ox[static_cast<std::size_t>(face[0])];
+      const Vec3& b = ox[static_cast<std::size_t>(face[1])];
+      const Vec3& c = ox[static_cast<std::size_t>(face[2])];
+      const Vec3 w = closest_triangle_weights(p, a, b, c);
+      const Vec3 q = w[0] * a + w[1] * b + w[2] * c;
+      held = (q - p).norm() <= distance && (q - p).dot(plane.normal) > 0;
+    });
+  }
+  return held;
+}
+
+}  // namespace
+
 std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& points, const std::vector<CollisionMesh>& obstacles,
-                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, int threads,
+                                                   const std::vector<std::vector<Vec3>>& obstacle_x, double radius, double hold_distance, int threads,
                                                    const std::vector<const Bvh*>& obstacle_trees) {
   std::vector<ObstaclePlane> planes(points.size());
   std::vector<double> best(points.size(), radius);
@@ -36,6 +65,7 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
         return d;
       });
     }
+    if (best[i] <= hold_distance && planes[i].normal.squaredNorm() > 0) planes[i].held = held_from_far_side(p, planes[i], obstacles, obstacle_x, trees, hold_distance);
   }
   return planes;
 }

@@ -105,11 +105,20 @@ SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec
 Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p) { return clamp_sizing(c.velocity, p); }
 
 namespace {
-// The largest of a face's criteria, obstacle proximity included.
+bool held(const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) {
+  for (int v = 0; v < 3; ++v)
+    if (!planes[static_cast<std::size_t>(mesh.face_node(f, v).idx)].held) return false;
+  return true;
+}
+
+// The largest of a face's criteria, obstacle proximity included. The compression criterion
+// resolves buckles the cloth would form (Narain et al. 2012, section 5); cloth pressed between
+// two surfaces cannot form them, and refining it there only multiplies its contacts.
 Mat2 largest_criterion(const SizingCriteria& c, const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) {
-  Mat2 m = tensor_max(tensor_max(c.curvature, c.velocity), c.compression);
-  if (!planes.empty()) m = tensor_max(m, obstacle_metric(mesh, f, planes));
-  return m;
+  if (planes.empty()) return tensor_max(tensor_max(c.curvature, c.velocity), c.compression);
+  Mat2 m = tensor_max(c.curvature, c.velocity);
+  if (!held(mesh, f, planes)) m = tensor_max(m, c.compression);
+  return tensor_max(m, obstacle_metric(mesh, f, planes));
 }
 }  // namespace
 

@@ -22,10 +22,13 @@ struct SizingParams {
 };
 
 // The obstacle point nearest to a node and the unit direction from it to the node (zero
-// normal: no obstacle near), for the obstacle-proximity criterion.
+// normal: no obstacle near), for the obstacle-proximity criterion; and whether the node is held:
+// another surface lies within the hold distance on the far side of the node from that point, so
+// that the cloth there is pressed between two and cannot buckle.
 struct ObstaclePlane {
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::Zero();
+  bool held = false;
 };
 
 // Face attribute holding the face tensors of the last compute_sizing.
@@ -55,8 +58,9 @@ SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec
 // coarsened below its compression criterion gives up compression instead, membrane.hpp.)
 Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p);
 
-// The physical tensor of one face before clamping: the largest of the criteria. `planes`, by
-// node index, may be empty (no obstacles).
+// The physical tensor of one face before clamping: the largest of the criteria, but for
+// compression where all three nodes are held (ObstaclePlane::held: no room for the buckles it
+// resolves). `planes`, by node index, may be empty (no obstacles).
 Mat2 face_sizing_unclamped(const Mesh& mesh, FaceId f, const std::vector<Vec3>& node_normals, const SizingParams& p,
                            const std::vector<ObstaclePlane>& planes = {});
 // Obstacle-proximity criterion (Narain et al. 2012, section 5): with h_v the heights of the

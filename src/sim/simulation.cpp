@@ -167,7 +167,9 @@ void Simulation::remesh_garments(FrameStats& stats) {
         near_meshes.push_back(garment_meshes[other]);
         near_x.push_back(garment_x[other]);
       }
-    planes[gi] = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, options_.threads, obstacle_trees);
+    // Held: in repulsion range of a surface on either side.
+    planes[gi] = nearest_obstacle_planes(garment_x[gi], near_meshes, near_x, scene_.remeshing.size_max, scene_.collision.repulsion_thickness,
+                                         options_.threads, obstacle_trees);
     if (viewing) {
       auto tv = std::chrono::steady_clock::now();
       views[gi] = std::make_unique<ViewSizing>(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);

@@ -250,8 +250,8 @@ TEST(ObstaclePlanes, NearestPointMatchesBruteForce) {
   std::vector<Vec3> points;
   for (int i = 0; i < 300; ++i) points.emplace_back(U(rng), U(rng), U(rng));
   const double radius = 0.2;
-  auto planes = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius, 2);
-  const auto serial = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius, 1);
+  auto planes = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius, 0, 2);
+  const auto serial = nearest_obstacle_planes(points, {sphere}, {ball.positions}, radius, 0, 1);
   for (std::size_t i = 0; i < points.size(); ++i) {
     EXPECT_EQ(planes[i].point, serial[i].point) << i;  // the same on any number of threads
     EXPECT_EQ(planes[i].normal, serial[i].normal) << i;
@@ -268,6 +268,59 @@ TEST(ObstaclePlanes, NearestPointMatchesBruteForce) {
       EXPECT_EQ(planes[i].normal.norm(), 0) << i;
     }
   }
+}
+
+// Two squares 1 m wide at heights `heights` (one obstacle mesh, or one mesh each), as obstacles.
+struct Squares {
+  std::vector<CollisionMesh> meshes;
+  std::vector<std::vector<Vec3>> x;
+};
+Squares squares_at(const std::vector<double>& heights, bool one_mesh) {
+  Squares s;
+  for (double y : heights) {
+    if (!one_mesh || s.meshes.empty()) {
+      s.meshes.emplace_back();
+      s.x.emplace_back();
+    }
+    auto& x = s.x.back();
+    const auto k = static_cast<int32_t>(x.size());
+    for (Vec3 c : {Vec3(-0.5, y, -0.5), Vec3(0.5, y, -0.5), Vec3(0.5, y, 0.5), Vec3(-0.5, y, 0.5)}) x.push_back(c);
+    s.meshes.back().faces.push_back({k, k + 1, k + 2});
+    s.meshes.back().faces.push_back({k, k + 2, k + 3});
+  }
+  return s;
+}
+
+TEST(ObstaclePlanes, HeldOnlyBetweenTwoSurfacesBothWithinTheHoldDistance) {
+  for (bool one_mesh : {false, true}) {
+    const Squares layers = squares_at({0.0, 0.005}, one_mesh);
+    // Between the layers: 2 mm below and 3 mm above; 1.5 mm and 3.5 mm; above both.
+    const std::vector<Vec3> points = {Vec3(0.1, 0.002, 0), Vec3(-0.2, 0.0015, 0.3), Vec3(0, 0.007, 0)};
+    const auto wide = nearest_obstacle_planes(points, layers.meshes, layers.x, 0.2, 0.0036, 2);
+    EXPECT_TRUE(wide[0].held) << one_mesh;
+    EXPECT_TRUE(wide[1].held) << one_mesh;
+    EXPECT_FALSE(wide[2].held) << one_mesh;  // both layers on the same side
+    const auto narrow = nearest_obstacle_planes(points, layers.meshes, layers.x, 0.2, 0.0032, 2);
+    EXPECT_TRUE(narrow[0].held) << one_mesh;
+    EXPECT_FALSE(narrow[1].held) << one_mesh;  // the far layer 3.5 mm off
+    EXPECT_FALSE(nearest_obstacle_planes(points, layers.meshes, layers.x, 0.2, 0, 2)[0].held) << one_mesh;
+    // The nearest point and its direction are those of the search without holding.
+    EXPECT_EQ(wide[0].point, narrow[0].point);
+    for (const ObstaclePlane& plane : wide) EXPECT_LT((plane.normal - Vec3(0, 1, 0)).norm(), 1e-12) << one_mesh;
+  }
+  // A node on a convex obstacle is never held by it, however near: every other point of a ball
+  // lies behind the plane of its nearest point.
+  const MeshSource ball = make_icosphere(0.1, 3);
+  CollisionMesh sphere;
+  for (const auto& f : ball.faces) sphere.faces.push_back({f[0].node, f[1].node, f[2].node});
+  std::vector<Vec3> around;
+  for (const Vec3& p : ball.positions) around.push_back(p * 1.02);
+  int near = 0;
+  for (const ObstaclePlane& plane : nearest_obstacle_planes(around, {sphere}, {ball.positions}, 0.2, 0.01, 2)) {
+    near += plane.normal.norm() > 0;
+    EXPECT_FALSE(plane.held);
+  }
+  EXPECT_EQ(near, static_cast<int>(around.size()));
 }
 
 }  // namespace

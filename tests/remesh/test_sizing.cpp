@@ -215,5 +215,30 @@ TEST(Sizing, ObstacleMetricResolvesTheGapAlongTheSlope) {
   EXPECT_LT(obstacle_metric(m, f, parallel).norm(), 1e-9);
 }
 
+TEST(Sizing, CompressionIsNotRefinedWhereTheClothIsHeld) {
+  // The squeezed sheet of ModifiersGetTheMotionCriteria..., at rest and flat in y = 0: its
+  // compression criterion alone asks for refinement. Held at every node (between two surfaces;
+  // the plane 2 mm below is parallel to it, so proximity asks nothing) it asks for nothing; a
+  // node let go gives its faces their compression criterion back.
+  SizingParams p;
+  Mesh squeezed = build_mesh(make_grid(1, 1, 4, 4));
+  for (NodeId n : squeezed.nodes()) squeezed.x(n).x() *= 0.9;
+  const std::vector<Vec3> up(static_cast<std::size_t>(squeezed.node_capacity()), Vec3(0, 1, 0));
+  std::vector<ObstaclePlane> planes(static_cast<std::size_t>(squeezed.node_capacity()), ObstaclePlane{Vec3(0, -0.002, 0), Vec3(0, 1, 0), true});
+  for (FaceId f : squeezed.faces()) EXPECT_LT(face_sizing_unclamped(squeezed, f, up, p, planes).norm(), 1e-9);
+  const NodeId freed = *squeezed.nodes().begin();
+  planes[static_cast<std::size_t>(freed.idx)].held = false;
+  int touching = 0;
+  for (FaceId f : squeezed.faces()) {
+    bool has = false;
+    for (int k = 0; k < 3; ++k) has |= squeezed.face_node(f, k) == freed;
+    touching += has;
+    const Mat2 expected = has ? sizing_criteria(squeezed, f, up, p).compression : Mat2::Zero();
+    EXPECT_GT(sizing_criteria(squeezed, f, up, p).compression(0, 0), 100.0);
+    EXPECT_LT((face_sizing_unclamped(squeezed, f, up, p, planes) - expected).norm(), 1e-9 * (1 + expected.norm())) << f.idx;
+  }
+  EXPECT_GE(touching, 1);
+}
+
 }  // namespace
 }  // namespace vdc
