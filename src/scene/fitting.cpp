@@ -170,47 +170,88 @@ double GarmentFit::height(double y) const {
   return to[i] + (y - from[i]) * (to[i + 1] - to[i]) / (from[i + 1] - from[i]);
 }
 
-// The radius a garment needs at reference height y on the figure to keep `ease` times its ease
-// there: the figure's girth at the matching height and that share of radius minus girth.
-double GarmentFit::needed(double y, double radius, double ease) const {
-  return figure_.girth_at(height(y)) + ease * (radius - reference_.girth_at(y));
+std::optional<double> garment_radius(const GarmentPattern& pattern, double y) {
+  if (const auto* tube = std::get_if<TubeParams>(&pattern)) {
+    if (y < tube->bottom_height || y > tube->top_height) return std::nullopt;
+    const double u = (tube->top_height - y) / (tube->top_height - tube->bottom_height);
+    return tube->top_radius + u * (tube->bottom_radius - tube->top_radius);
+  }
+  const auto& dress = std::get<DressParams>(pattern);
+  if (y < dress.hem_height || y > dress.top_height) return std::nullopt;
+  if (y >= dress.waist_height) return dress.bodice_radius;
+  const double u = (dress.waist_height - y) / (dress.waist_height - dress.hem_height);
+  return dress.bodice_radius + u * (dress.hem_radius - dress.bodice_radius);
 }
 
-TubeParams GarmentFit::fit(const TubeParams& p, double ease) const {
+// The radius a garment needs at reference height y on the figure to keep `ease` times its ease
+// there: the figure's girth at the matching height and that share of radius minus girth, and
+// as much beyond each garment under it (of smaller radius there on the reference).
+double GarmentFit::needed(double y, double radius, double ease, const std::vector<Under>& under) const {
+  double need = figure_.girth_at(height(y)) + ease * (radius - reference_.girth_at(y));
+  for (const Under& layer : under) {
+    const std::optional<double> inner = garment_radius(*layer.reference, y);
+    if (!inner || *inner >= radius) continue;
+    if (const std::optional<double> fitted = garment_radius(*layer.fitted, height(y))) need = std::max(need, *fitted + ease * (radius - *inner));
+  }
+  return need;
+}
+
+TubeParams GarmentFit::fit(const TubeParams& p, double ease) const { return fit(p, ease, {}); }
+DressParams GarmentFit::fit(const DressParams& p, double ease) const { return fit(p, ease, {}); }
+
+std::vector<GarmentPattern> GarmentFit::fit(const std::vector<GarmentPattern>& worn, double ease) const {
+  std::vector<GarmentPattern> fitted;
+  for (const GarmentPattern& p : worn) fitted.push_back(std::visit([&](const auto& q) { return GarmentPattern(fit(q, ease)); }, p));
+  // Each pass fits every garment over the others as the last pass fitted them: after as many
+  // passes as there are garments, the deepest stack of layers has been carried outwards.
+  for (std::size_t pass = 1; pass < worn.size(); ++pass) {
+    std::vector<GarmentPattern> next;
+    for (std::size_t g = 0; g < worn.size(); ++g) {
+      std::vector<Under> under;
+      for (std::size_t other = 0; other < worn.size(); ++other)
+        if (other != g) under.push_back({&worn[other], &fitted[other]});
+      next.push_back(std::visit([&](const auto& q) { return GarmentPattern(fit(q, ease, under)); }, worn[g]));
+    }
+    fitted = std::move(next);
+  }
+  return fitted;
+}
+
+TubeParams GarmentFit::fit(const TubeParams& p, double ease, const std::vector<Under>& under) const {
   TubeParams q = with_rows(p);
   q.top_height = height(p.top_height);
   q.bottom_height = height(p.bottom_height);
   // The top ring (where a tube hangs from, where a waistband is held) as close as its ease
   // allows; the bottom ring as wide as the cone then needs to keep its ease at every height.
   auto radius = [&](double y) { return p.bottom_radius + (y - p.bottom_height) / (p.top_height - p.bottom_height) * (p.top_radius - p.bottom_radius); };
-  q.top_radius = std::max(kNarrowest * p.top_radius, needed(p.top_height, p.top_radius, ease));
-  q.bottom_radius = std::max(kNarrowest * p.bottom_radius, needed(p.bottom_height, p.bottom_radius, ease));
+  q.top_radius = std::max(kNarrowest * p.top_radius, needed(p.top_height, p.top_radius, ease, under));
+  q.bottom_radius = std::max(kNarrowest * p.bottom_radius, needed(p.bottom_height, p.bottom_radius, ease, under));
   const double drop = p.top_height - p.bottom_height;
   for (double y = p.bottom_height; y < p.top_height; y += FigureMeasure::kGirthStep) {
     const double u = (p.top_height - y) / drop;  // 0 at the top, 1 at the bottom
     if (u < 0.1) break;
-    q.bottom_radius = std::max(q.bottom_radius, q.top_radius + (needed(y, radius(y), ease) - q.top_radius) / u);
+    q.bottom_radius = std::max(q.bottom_radius, q.top_radius + (needed(y, radius(y), ease, under) - q.top_radius) / u);
   }
   return q;
 }
 
-DressParams GarmentFit::fit(const DressParams& p, double ease) const {
+DressParams GarmentFit::fit(const DressParams& p, double ease, const std::vector<Under>& under) const {
   DressParams q = with_rows(p);
   q.waist_height = height(p.waist_height);
   q.top_height = height(p.top_height);
   q.hem_height = height(p.hem_height);
   q.strap_rise = height(p.top_height + p.strap_rise) - q.top_height;
-  double bodice = needed(p.top_height, p.bodice_radius, ease);
-  for (double y = p.waist_height; y < p.top_height; y += FigureMeasure::kGirthStep) bodice = std::max(bodice, needed(y, p.bodice_radius, ease));
+  double bodice = needed(p.top_height, p.bodice_radius, ease, under);
+  for (double y = p.waist_height; y < p.top_height; y += FigureMeasure::kGirthStep) bodice = std::max(bodice, needed(y, p.bodice_radius, ease, under));
   q.bodice_radius = std::max(kNarrowest * p.bodice_radius, bodice);
   // The skirt is a cone from the bodice's radius at the waist: its hem is as wide as it must be
   // for the cone to keep, at every height, its share of the ease it has on the reference figure.
-  q.hem_radius = std::max(q.bodice_radius + 0.5 * ease * (p.hem_radius - p.bodice_radius), needed(p.hem_height, p.hem_radius, ease));
+  q.hem_radius = std::max(q.bodice_radius + 0.5 * ease * (p.hem_radius - p.bodice_radius), needed(p.hem_height, p.hem_radius, ease, under));
   const double drop = p.waist_height - p.hem_height;
   for (double y = p.hem_height; y < p.waist_height; y += FigureMeasure::kGirthStep) {
     const double u = (p.waist_height - y) / drop;  // 0 at the waist, 1 at the hem
     if (u < 0.1) break;
-    const double radius = needed(y, p.bodice_radius + u * (p.hem_radius - p.bodice_radius), ease);
+    const double radius = needed(y, p.bodice_radius + u * (p.hem_radius - p.bodice_radius), ease, under);
     q.hem_radius = std::max(q.hem_radius, q.bodice_radius + (radius - q.bodice_radius) / u);
   }
   q.strap_x = std::min(0.8 * q.bodice_radius, p.strap_x * figure_.shoulder_half_width / reference_.shoulder_half_width);
@@ -218,10 +259,14 @@ DressParams GarmentFit::fit(const DressParams& p, double ease) const {
 }
 
 double GarmentFit::ease_clearing_arms(const std::vector<HeldGarment>& garments, double clearance) const {
+  std::vector<GarmentPattern> worn;
+  for (const HeldGarment& g : garments) worn.push_back(g.pattern);
   auto clear = [&](double ease) {
-    for (const HeldGarment& g : garments) {
+    const std::vector<GarmentPattern> fitted = fit(worn, ease);
+    for (std::size_t k = 0; k < garments.size(); ++k) {
+      const HeldGarment& g = garments[k];
       if (g.held.empty()) continue;
-      const MeshSource made = std::visit([&](const auto& p) { return make_garment(fit(p, ease)); }, g.pattern);
+      const MeshSource made = std::visit([](const auto& p) { return make_garment(p); }, fitted[k]);
       for (int n : g.held) {
         const Vec3& x = made.positions.at(static_cast<std::size_t>(n));
         if (std::hypot(x.x(), x.z()) > figure_.reach_at(x.y()) - clearance) return false;

@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -50,9 +51,14 @@ FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshS
 void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<int>& main_joints,
                        const std::vector<Pose>& moving, const std::function<std::vector<Vec3>(const Pose&)>& skin);
 
+using GarmentPattern = std::variant<DressParams, TubeParams>;
+
+// A procedural garment's radius at height y (its straps left out); none where it does not reach.
+std::optional<double> garment_radius(const GarmentPattern& pattern, double y);
+
 // A procedural garment and the nodes its handles hold (indices of make_garment's positions).
 struct HeldGarment {
-  std::variant<DressParams, TubeParams> pattern;
+  GarmentPattern pattern;
   std::vector<int> held;
 };
 
@@ -71,6 +77,11 @@ class GarmentFit {
   // reference.
   TubeParams fit(const TubeParams& p, double ease = 1.0) const;
   DressParams fit(const DressParams& p, double ease = 1.0) const;
+  // The garments one figure wears, fitted together: at every height each keeps at least `ease`
+  // times its ease beyond the body and beyond every garment it is worn over there on the
+  // reference (one of smaller radius), measured on that garment as fitted, so layers keep their
+  // order (a belt fitted to a slender waist stays outside a tunic the chest makes wide).
+  std::vector<GarmentPattern> fit(const std::vector<GarmentPattern>& worn, double ease = 1.0) const;
   // The largest share of their ease, 1 at most and kLeastEase at least, that a figure's garments
   // can keep with every node a handle holds at least `clearance` inside the arms' reach (needs
   // measure_arm_reach): cloth a handle holds cannot make way, so a held waistband the arms
@@ -84,7 +95,14 @@ class GarmentFit {
   Vec3 place(const Vec3& x) const;
 
  private:
-  double needed(double y, double radius, double ease) const;
+  // A garment worn under the one being fitted: as on the reference, and as fitted so far.
+  struct Under {
+    const GarmentPattern* reference;
+    const GarmentPattern* fitted;
+  };
+  TubeParams fit(const TubeParams& p, double ease, const std::vector<Under>& under) const;
+  DressParams fit(const DressParams& p, double ease, const std::vector<Under>& under) const;
+  double needed(double y, double radius, double ease, const std::vector<Under>& under) const;
   FigureMeasure reference_, figure_;
   bool identity_ = false;
 };

@@ -114,11 +114,8 @@ Transform parse_transform(const JsonValue& j) {
   return t;
 }
 
-// A procedural garment's sizes, kept so the garment can be made again for another figure.
-using Pattern = std::variant<DressParams, TubeParams>;
-
 // With `pattern`, a procedural garment's sizes are kept there.
-Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment, std::optional<Pattern>* pattern = nullptr) {
+Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment, std::optional<GarmentPattern>* pattern = nullptr) {
   if (j.is_string()) {
     std::string file = resolve(j, scene_path);
     return with_key(j, [&] { return read_obj(file, garment); });
@@ -263,7 +260,7 @@ void parse_handles(const JsonValue& list, GarmentSpec& g) {
 
 // What making a garment again for the figure wearing it needs (fit_garment).
 struct GarmentMaking {
-  std::optional<Pattern> pattern;  // a procedural garment's sizes on the project's figure
+  std::optional<GarmentPattern> pattern;  // a procedural garment's sizes on the project's figure, to make it again for another
   std::optional<Transform> transform;
   bool rest_initial = false;
 };
@@ -371,9 +368,13 @@ void fit_garments(const JsonValue& scene, std::vector<GarmentSpec>& garments, co
     fit.emplace(reference, *figure);
     ease = fit->ease_clearing_arms(held, kArmClearance);
   }
-  for (std::size_t g : worn) {
+  std::vector<GarmentPattern> patterns;
+  for (std::size_t g : worn) patterns.push_back(*making[g].pattern);
+  const std::vector<GarmentPattern> fitted = fit->fit(patterns, ease);
+  for (std::size_t k = 0; k < worn.size(); ++k) {
+    const std::size_t g = worn[k];
     GarmentSpec& garment = garments[g];
-    MeshSource source = std::visit([&](const auto& p) { return make_garment(fit->fit(p, ease)); }, *making[g].pattern);
+    MeshSource source = std::visit([](const auto& p) { return make_garment(p); }, fitted[k]);
     for (Vec3& x : source.positions) x = fit->place(x);
     Mesh mesh = build_mesh(source);
     if (mesh.num_nodes() != garment.mesh.num_nodes() || mesh.num_faces() != garment.mesh.num_faces())

@@ -156,5 +156,51 @@ TEST(Fitting, ASlenderFiguresBuildKeepsItsArmsClear) {
   }
 }
 
+TEST(Fitting, LayersFittedTogetherKeepTheirOrderAndShareOfTheGap) {
+  // karate's layers (hakama, tunic, belt) on a figure of 1.6 m with limbs 1.2 times as thick,
+  // at a third of their ease: fitted one by one, the belt (0.23 m, 1.5 to 2.5 cm outside the
+  // tunic on the project's figure) keeps its ease over the waist only, while the tunic's bodice
+  // keeps its own over the chest as well, and the belt ends inside the tunic.
+  const FigureMeasure reference = measured(at_rest(figure_skeleton()), 1.0);
+  const GarmentFit fit(reference, measured(at_rest(figure_skeleton(1.6)), 1.2));
+  const TubeParams hakama{48, 1.0, 0.185, 0.3, 0.36, 0.03};
+  DressParams tunic;
+  tunic.bodice_radius = 0.205;
+  tunic.top_height = 1.29;
+  tunic.hem_height = 0.8;
+  tunic.hem_radius = 0.265;
+  const TubeParams belt{48, 1.06, 0.23, 0.99, 0.23, 0.025};
+  const double share = 0.3;
+  const std::vector<GarmentPattern> worn = {hakama, tunic, belt};
+  const std::vector<GarmentPattern> together = fit.fit(worn, share);
+  // Outside by at least the share of the gap at every height both cover; `least` is the smallest
+  // margin over that, which the outer layer meets exactly somewhere.
+  auto least_margin = [&](const GarmentPattern& outer, const GarmentPattern& inner, const GarmentPattern& outer_fitted,
+                          const GarmentPattern& inner_fitted) {
+    double least = 1;
+    for (double y = 0.3; y <= 1.3; y += 0.005) {
+      const auto ro = garment_radius(outer, y), ri = garment_radius(inner, y);
+      const auto fo = garment_radius(outer_fitted, fit.height(y)), fi = garment_radius(inner_fitted, fit.height(y));
+      if (!ro || !ri || !fo || !fi || *ri >= *ro) continue;
+      least = std::min(least, *fo - *fi - share * (*ro - *ri));
+    }
+    return least;
+  };
+  const GarmentPattern alone_tunic = fit.fit(tunic, share), alone_belt = fit.fit(belt, share);
+  EXPECT_LT(least_margin(belt, tunic, alone_belt, alone_tunic), -0.005);  // one by one: 5 mm and more inside
+  EXPECT_GE(least_margin(belt, tunic, together[2], together[1]), -1e-12);
+  EXPECT_LT(least_margin(belt, tunic, together[2], together[1]), 1e-9);  // its top ring, exactly
+  EXPECT_GE(least_margin(tunic, hakama, together[1], together[0]), -1e-12);
+  // The order the garments are given in changes nothing.
+  const std::vector<GarmentPattern> reversed = fit.fit({belt, tunic, hakama}, share);
+  EXPECT_EQ(std::get<TubeParams>(reversed[0]).top_radius, std::get<TubeParams>(together[2]).top_radius);
+  EXPECT_EQ(std::get<DressParams>(reversed[1]).bodice_radius, std::get<DressParams>(together[1]).bodice_radius);
+  // garment_radius: a dress's bodice above the waist, its skirt's cone below, nothing past the hem.
+  EXPECT_EQ(*garment_radius(tunic, 1.2), 0.205);
+  EXPECT_NEAR(*garment_radius(tunic, 0.8 + 0.5 * (tunic.waist_height - 0.8)), 0.235, 1e-12);
+  EXPECT_FALSE(garment_radius(tunic, 0.79));
+  EXPECT_FALSE(garment_radius(belt, 1.07));
+}
+
 }  // namespace
 }  // namespace vdc
