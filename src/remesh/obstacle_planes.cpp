@@ -10,6 +10,16 @@ namespace vdc {
 
 namespace {
 
+// The point of obstacle face f (corners at ox) closest to p.
+Vec3 closest_on_face(const Vec3& p, const CollisionMesh& obstacle, const std::vector<Vec3>& ox, std::size_t f) {
+  const auto& face = obstacle.faces[f];
+  const Vec3& a = ox[static_cast<std::size_t>(face[0])];
+  const Vec3& b = ox[static_cast<std::size_t>(face[1])];
+  const Vec3& c = ox[static_cast<std::size_t>(face[2])];
+  const Vec3 w = closest_triangle_weights(p, a, b, c);
+  return w[0] * a + w[1] * b + w[2] * c;
+}
+
 // Whether a surface point lies within `distance` of p on the far side of p from its nearest
 // obstacle point (in the open half-space the plane's normal points into).
 bool held_from_far_side(const Vec3& p, const ObstaclePlane& plane, const std::vector<CollisionMesh>& obstacles,
@@ -18,20 +28,12 @@ bool held_from_far_side(const Vec3& p, const ObstaclePlane& plane, const std::ve
   box.grow(p);
   box.pad(distance);
   bool held = false;
-  for (std::size_t o = 0; o < obstacles.size() && !held; ++o) {
-    const auto& ox = obstacle_x[o];
-    const auto& faces = obstacles[o].faces;
+  for (std::size_t o = 0; o < obstacles.size() && !held; ++o)
     trees[o]->query(box, [&](int32_t fi) {
       if (held) return;
-      const auto& face = faces[static_cast<std::size_t>(fi)];
-      const Vec3& a = ox[static_cast<std::size_t>(face[0])];
-      const Vec3& b = ox[static_cast<std::size_t>(face[1])];
-      const Vec3& c = ox[static_cast<std::size_t>(face[2])];
-      const Vec3 w = closest_triangle_weights(p, a, b, c);
-      const Vec3 q = w[0] * a + w[1] * b + w[2] * c;
+      const Vec3 q = closest_on_face(p, obstacles[o], obstacle_x[o], static_cast<std::size_t>(fi));
       held = (q - p).norm() <= distance && (q - p).dot(plane.normal) > 0;
     });
-  }
   return held;
 }
 
@@ -55,8 +57,7 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
       auto corner = [&](std::size_t f, int k) -> const Vec3& { return ox[static_cast<std::size_t>(faces[f][static_cast<std::size_t>(k)])]; };
       trees[o]->nearest(p, best[i], [&](int32_t fi) {
         const auto f = static_cast<std::size_t>(fi);
-        const Vec3 w = closest_triangle_weights(p, corner(f, 0), corner(f, 1), corner(f, 2));
-        const Vec3 q = w[0] * corner(f, 0) + w[1] * corner(f, 1) + w[2] * corner(f, 2);
+        const Vec3 q = closest_on_face(p, obstacles[o], ox, f);
         const double d = (p - q).norm();
         if (d < best[i]) {
           planes[i].point = q;

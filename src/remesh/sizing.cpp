@@ -115,10 +115,9 @@ bool held(const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) 
 // resolves buckles the cloth would form (Narain et al. 2012, section 5); cloth pressed between
 // two surfaces cannot form them, and refining it there only multiplies its contacts.
 Mat2 largest_criterion(const SizingCriteria& c, const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) {
-  if (planes.empty()) return tensor_max(tensor_max(c.curvature, c.velocity), c.compression);
   Mat2 m = tensor_max(c.curvature, c.velocity);
-  if (!held(mesh, f, planes)) m = tensor_max(m, c.compression);
-  return tensor_max(m, obstacle_metric(mesh, f, planes));
+  if (planes.empty() || !held(mesh, f, planes)) m = tensor_max(m, c.compression);
+  return planes.empty() ? m : tensor_max(m, obstacle_metric(mesh, f, planes));
 }
 }  // namespace
 

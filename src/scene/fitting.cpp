@@ -170,17 +170,21 @@ double GarmentFit::height(double y) const {
   return to[i] + (y - from[i]) * (to[i + 1] - to[i]) / (from[i + 1] - from[i]);
 }
 
-std::optional<double> garment_radius(const GarmentPattern& pattern, double y) {
-  if (const auto* tube = std::get_if<TubeParams>(&pattern)) {
-    if (y < tube->bottom_height || y > tube->top_height) return std::nullopt;
-    const double u = (tube->top_height - y) / (tube->top_height - tube->bottom_height);
-    return tube->top_radius + u * (tube->bottom_radius - tube->top_radius);
-  }
-  const auto& dress = std::get<DressParams>(pattern);
+std::optional<double> garment_radius(const TubeParams& tube, double y) {
+  if (y < tube.bottom_height || y > tube.top_height) return std::nullopt;
+  const double u = (tube.top_height - y) / (tube.top_height - tube.bottom_height);
+  return tube.top_radius + u * (tube.bottom_radius - tube.top_radius);
+}
+
+std::optional<double> garment_radius(const DressParams& dress, double y) {
   if (y < dress.hem_height || y > dress.top_height) return std::nullopt;
   if (y >= dress.waist_height) return dress.bodice_radius;
   const double u = (dress.waist_height - y) / (dress.waist_height - dress.hem_height);
   return dress.bodice_radius + u * (dress.hem_radius - dress.bodice_radius);
+}
+
+std::optional<double> garment_radius(const GarmentPattern& pattern, double y) {
+  return std::visit([y](const auto& p) { return garment_radius(p, y); }, pattern);
 }
 
 // The radius a garment needs at reference height y on the figure to keep `ease` times its ease
@@ -223,6 +227,8 @@ TubeParams GarmentFit::fit(const TubeParams& p, double ease, const std::vector<U
   q.bottom_height = height(p.bottom_height);
   // The top ring (where a tube hangs from, where a waistband is held) as close as its ease
   // allows; the bottom ring as wide as the cone then needs to keep its ease at every height.
+  // (The cone's radius interpolated from the bottom up, as the fits in bench/RESULTS.md were
+  // made; garment_radius's, from the top down, can differ in the last bit.)
   auto radius = [&](double y) { return p.bottom_radius + (y - p.bottom_height) / (p.top_height - p.bottom_height) * (p.top_radius - p.bottom_radius); };
   q.top_radius = std::max(kNarrowest * p.top_radius, needed(p.top_height, p.top_radius, ease, under));
   q.bottom_radius = std::max(kNarrowest * p.bottom_radius, needed(p.bottom_height, p.bottom_radius, ease, under));
@@ -251,7 +257,7 @@ DressParams GarmentFit::fit(const DressParams& p, double ease, const std::vector
   for (double y = p.hem_height; y < p.waist_height; y += FigureMeasure::kGirthStep) {
     const double u = (p.waist_height - y) / drop;  // 0 at the waist, 1 at the hem
     if (u < 0.1) break;
-    const double radius = needed(y, p.bodice_radius + u * (p.hem_radius - p.bodice_radius), ease, under);
+    const double radius = needed(y, *garment_radius(p, y), ease, under);
     q.hem_radius = std::max(q.hem_radius, q.bodice_radius + (radius - q.bodice_radius) / u);
   }
   q.strap_x = std::min(0.8 * q.bodice_radius, p.strap_x * figure_.shoulder_half_width / reference_.shoulder_half_width);

@@ -54,6 +54,8 @@ void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose,
 using GarmentPattern = std::variant<DressParams, TubeParams>;
 
 // A procedural garment's radius at height y (its straps left out); none where it does not reach.
+std::optional<double> garment_radius(const TubeParams& tube, double y);
+std::optional<double> garment_radius(const DressParams& dress, double y);
 std::optional<double> garment_radius(const GarmentPattern& pattern, double y);
 
 // A procedural garment and the nodes its handles hold (indices of make_garment's positions).
