@@ -1,5 +1,7 @@
 // Small fixed-size linear algebra types shared by every module (Eigen underneath).
 #pragma once
+#include <array>
+
 #include <Eigen/Core>
 #include <Eigen/Dense>
 
@@ -11,6 +13,7 @@ using Mat2 = Eigen::Matrix2d;
 using Mat3 = Eigen::Matrix3d;
 using Mat32 = Eigen::Matrix<double, 3, 2>;
 using Mat23 = Eigen::Matrix<double, 2, 3>;
+using Triangle = std::array<Vec3, 3>;  // a triangle's corners
 template <int N>
 using VecN = Eigen::Matrix<double, N, 1>;
 template <int N>

@@ -13,8 +13,6 @@
 
 namespace vdc {
 
-using Triangle = std::array<Vec3, 3>;
-
 // What the garments being remeshed must not cross, as it stands at the frame's start: the
 // obstacles' faces and every garment's, with the garment each belongs to (-1: an obstacle). Built
 // once a frame and shared by the garments remeshed side by side.

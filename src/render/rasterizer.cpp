@@ -1,11 +1,13 @@
-// Scanline-free rasterization: each triangle's pixel box is walked with edge functions, depth is
-// interpolated as 1/z (linear in screen space) and kept in a z-buffer; Gouraud shading, and the
-// shading normal interpolated alongside it.
+// Scanline-free rasterization (view/depth_image.hpp's rasterize_triangle: each triangle's pixel
+// box walked with edge functions, depth interpolated as 1/z) into a z-buffer; Gouraud shading,
+// and the shading normal interpolated alongside it.
 #include "render/rasterizer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "view/depth_image.hpp"
 
 namespace vdc {
 
@@ -56,33 +58,19 @@ RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes
     for (const auto& f : mesh.faces) {
       const std::array<std::size_t, 3> v = {static_cast<std::size_t>(f[0]), static_cast<std::size_t>(f[1]), static_cast<std::size_t>(f[2])};
       if (z[v[0]] < camera.near || z[v[1]] < camera.near || z[v[2]] < camera.near) continue;
-      const Vec2 &a = screen[v[0]], &b = screen[v[1]], &c = screen[v[2]];
-      const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-      if (!(std::abs(area) > 1e-12)) continue;
-      const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
-      const int x1 = std::min(width - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
-      const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
-      const int y1 = std::min(height - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const Vec2 p(x + 0.5, y + 0.5);
-          // Barycentric weights from the signed areas of the sub-triangles opposite each corner.
-          const double wa = ((b - p).x() * (c - p).y() - (b - p).y() * (c - p).x()) / area;
-          const double wb = ((c - p).x() * (a - p).y() - (c - p).y() * (a - p).x()) / area;
-          const double wc = 1 - wa - wb;
-          if (wa < 0 || wb < 0 || wc < 0) continue;
-          const double d = 1.0 / (wa / z[v[0]] + wb / z[v[1]] + wc / z[v[2]]);
-          const auto i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-          if (d >= depth[i]) continue;
-          depth[i] = d;
-          frame.mesh[i] = static_cast<int32_t>(m);
-          const Vec3 colour = mesh.colour * (wa * brightness[v[0]] + wb * brightness[v[1]] + wc * brightness[v[2]]);
-          for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(colour[k]);
-          Vec3 n = wa * vertex_normal[v[0]] + wb * vertex_normal[v[1]] + wc * vertex_normal[v[2]];
-          const double len = n.norm();
-          n = len > 0 ? Vec3(n / len) : Vec3(-forward);
-          frame.normal[i] = n.dot(forward) > 0 ? Vec3(-n) : n;
-        }
+      const std::array<double, 3> zs = {z[v[0]], z[v[1]], z[v[2]]};
+      rasterize_triangle(screen[v[0]], screen[v[1]], screen[v[2]], zs, width, height, [&](int x, int y, double wa, double wb, double wc, double d) {
+        const auto i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+        if (d >= depth[i]) return;
+        depth[i] = d;
+        frame.mesh[i] = static_cast<int32_t>(m);
+        const Vec3 colour = mesh.colour * (wa * brightness[v[0]] + wb * brightness[v[1]] + wc * brightness[v[2]]);
+        for (int k = 0; k < 3; ++k) frame.image.rgb[3 * i + static_cast<std::size_t>(k)] = to_byte(colour[k]);
+        Vec3 n = wa * vertex_normal[v[0]] + wb * vertex_normal[v[1]] + wc * vertex_normal[v[2]];
+        const double len = n.norm();
+        n = len > 0 ? Vec3(n / len) : Vec3(-forward);
+        frame.normal[i] = n.dot(forward) > 0 ? Vec3(-n) : n;
+      });
     }
   }
   return frame;

@@ -578,7 +578,8 @@ CameraPath parse_camera(const JsonValue& j) {
 
 // The `view` block: parameters of view-dependent sizing.
 ViewParams parse_view(const JsonValue& j) {
-  j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "l_min", "l_max", "silhouette_threshold", "settle"});
+  j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "l_min", "l_max", "silhouette_threshold", "settle",
+               "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -592,6 +593,14 @@ ViewParams parse_view(const JsonValue& j) {
   if (p.l_max > 0 && p.l_max < p.l_min) j.at("l_max").fail("must be 0 (no ceiling) or at least l_min");
   p.silhouette_threshold = j.positive_or("silhouette_threshold", p.silhouette_threshold);
   p.settle = j.non_negative_or("settle", p.settle);
+  p.back_occlusion = j.boolean_or("back_occlusion", p.back_occlusion);
+  p.occlusion_scale = j.positive_or("occlusion_scale", p.occlusion_scale);
+  if (p.occlusion_scale > 1) j.at("occlusion_scale").fail("must be at most 1 (the camera's own image size)");
+  const long long erosion = j.integer_or("occlusion_erosion", p.occlusion_erosion);
+  if (erosion < 0 || erosion > 16) j.at("occlusion_erosion").fail("must be an integer from 0 to 16 (pixels)");
+  p.occlusion_erosion = static_cast<int>(erosion);
+  p.occlusion_depth = j.non_negative_or("occlusion_depth", p.occlusion_depth);
+  p.motion_anticipation = j.boolean_or("motion_anticipation", p.motion_anticipation);
   return p;
 }
 

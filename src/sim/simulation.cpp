@@ -155,6 +155,15 @@ void Simulation::remesh_garments(FrameStats& stats) {
   };
   for (std::size_t o = 0; o < obstacle_faces_.size(); ++o) stand(obstacle_faces_[o], obstacle_x[o], -1);
   for (std::size_t g = 0; g < garments_.size(); ++g) stand(garment_meshes[g], garment_x[g], static_cast<int>(g));
+  // The back-face rule's depth images, once a frame for every garment: the same bodies and
+  // garments, seen by the window's cameras (none while settling: every factor is 1 then).
+  std::vector<DepthImage> occluders;
+  if (viewing && scene_.view.back_occlusion && !(time() + 1e-9 < scene_.view.settle)) {
+    const auto tv = std::chrono::steady_clock::now();
+    occluders = occlusion_images(AnticipationWindow(*scene_.camera, time(), scene_.frame_time, scene_.view), triangles, scene_.view,
+                                 options_.threads);
+    stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
+  }
   const StandingSurfaces standing(std::move(triangles), std::move(owners));
   const std::size_t count = garments_.size();
   std::vector<std::vector<ObstaclePlane>> planes(count);
@@ -173,7 +182,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
     if (viewing) {
       auto tv = std::chrono::steady_clock::now();
       views[gi] = std::make_unique<ViewSizing>(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
-      views[gi]->evaluate(garments_[gi]);
+      views[gi]->evaluate(garments_[gi], &occluders);
       stats.visible_faces += views[gi]->counts().visible;
       stats.back_facing_faces += views[gi]->counts().back_facing;
       stats.out_of_frame_faces += views[gi]->counts().out_of_frame;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace vdc {
 
@@ -10,6 +11,15 @@ namespace {
 
 bool faces_camera(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c) {
   return area_normal(a, b, c).dot(frustum.eye - (a + b + c) / 3.0) > 0;
+}
+
+// The side the camera sees counts as the front: the outer side facing it, or the inner side
+// where the depth image hides none of the corners and centre.
+bool seen_as_front(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p, const DepthImage* depth) {
+  if (faces_camera(frustum, a, b, c)) return true;
+  if (depth == nullptr) return false;
+  const double m = p.occlusion_depth;
+  return !(depth->hidden(a, m) && depth->hidden(b, m) && depth->hidden(c, m) && depth->hidden((a + b + c) / 3.0, m));
 }
 
 // Eq. 3: from v_fb (in frame) down to v_out at `margin` from the frustum, linearly.
@@ -22,17 +32,19 @@ double factor_at(double distance, bool front, const ViewParams& p) {
 
 }  // namespace
 
-FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p) {
+FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p, const DepthImage* depth) {
   FaceView view;
-  view.front = faces_camera(frustum, a, b, c);
+  view.front = seen_as_front(frustum, a, b, c, p, depth);
   view.distance = distance_to_frustum(frustum, a, b, c, p.margin);
   view.factor = factor_at(view.distance, view.front, p);
   return view;
 }
 
 AnticipationWindow::AnticipationWindow(const CameraPath& path, double t, double frame_time, const ViewParams& p) {
-  frusta.emplace_back(path.at(t));
+  cameras.push_back(path.at(t));
+  frusta.emplace_back(cameras.back());
   weights.push_back(1.0);
+  offsets.push_back(0.0);
   const double ramp = p.anticipation * frame_time, lead = p.lead * frame_time, window = lead + ramp;
   if (window <= 0) return;
   std::vector<double> taus;
@@ -42,24 +54,47 @@ AnticipationWindow::AnticipationWindow(const CameraPath& path, double t, double 
     if (cut < t + window) taus.push_back(cut - t);
   std::sort(taus.begin(), taus.end());
   for (double tau : taus) {
-    frusta.emplace_back(path.at(t + tau));
+    cameras.push_back(path.at(t + tau));
+    frusta.emplace_back(cameras.back());
+    offsets.push_back(tau);
     weights.push_back(tau <= lead ? 1.0 : ramp > 0 ? 1 - (tau - lead) / ramp : 0.0);
   }
 }
 
-double anticipated_view_factor(const AnticipationWindow& window, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p) {
+std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const std::vector<Triangle>& triangles, const ViewParams& p, int threads) {
+  if (!p.back_occlusion) return {};
+  std::vector<std::optional<DepthImage>> made(window.cameras.size());
+  const auto n = static_cast<int64_t>(made.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (int64_t k = 0; k < n; ++k)
+    made[static_cast<std::size_t>(k)].emplace(window.cameras[static_cast<std::size_t>(k)], triangles, p.occlusion_scale, p.occlusion_erosion);
+  std::vector<DepthImage> images;
+  images.reserve(made.size());
+  for (auto& image : made) images.push_back(std::move(*image));
+  return images;
+}
+
+double anticipated_view_factor(const AnticipationWindow& window, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p,
+                               const std::vector<DepthImage>* depth, const std::array<Vec3, 3>* velocity) {
   double best = 0;
   for (std::size_t k = 0; k < window.frusta.size(); ++k) {
     const double w = window.weights[k];
     if (w <= best) break;  // later samples weigh less still
+    // The face where its nodes' velocities take it by the sample's time (held where it is
+    // without them).
+    const double tau = velocity != nullptr ? window.offsets[k] : 0.0;
+    const Vec3 ak = velocity != nullptr ? Vec3(a + tau * (*velocity)[0]) : a;
+    const Vec3 bk = velocity != nullptr ? Vec3(b + tau * (*velocity)[1]) : b;
+    const Vec3 ck = velocity != nullptr ? Vec3(c + tau * (*velocity)[2]) : c;
     // The factor at the planes' lower bound of the distance bounds it from above (eq. 3 is
     // linear in the distance between two values): a sample that cannot raise the best is not
-    // measured exactly.
+    // measured exactly. The bound takes the face as facing the camera when it faces away: the
+    // depth test is left for the samples that can raise the best.
     const Frustum& frustum = window.frusta[k];
-    const bool front = faces_camera(frustum, a, b, c);
-    const double d = frustum_plane_separation(frustum, a, b, c);
+    const bool front = faces_camera(frustum, ak, bk, ck) || depth != nullptr;
+    const double d = frustum_plane_separation(frustum, ak, bk, ck);
     if (w * std::max(factor_at(d, front, p), p.v_out) <= best) continue;
-    best = std::max(best, w * face_view(frustum, a, b, c, p).factor);
+    best = std::max(best, w * face_view(frustum, ak, bk, ck, p, depth != nullptr ? &(*depth)[k] : nullptr).factor);
   }
   return best;
 }

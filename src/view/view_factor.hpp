@@ -8,6 +8,7 @@
 
 #include "core/mesh.hpp"
 #include "view/camera.hpp"
+#include "view/depth_image.hpp"
 
 namespace vdc {
 
@@ -28,6 +29,16 @@ struct ViewParams {
   double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling
   int samples_per_frame = 4;          // camera samples per frame over the anticipation window
   double settle = 0;                  // s: factors are 1 before this time (the drape forms uncoarsened by v)
+  // A face turned away from the camera takes v_back only where something hides it: its corners
+  // and centre all behind a depth image of the bodies and garments (otherwise it is the inside
+  // of a garment in plain view, and counts as facing the camera). false: the seed's rule.
+  bool back_occlusion = false;
+  double occlusion_scale = 0.125;  // the depth images' size relative to the camera's image
+  int occlusion_erosion = 1;       // pixels of a depth image: an occluder's edge hides nothing this near it
+  double occlusion_depth = 0.02;   // m: how far behind the nearest surface a point must lie to be hidden
+  // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
+  // motion anticipated to first order) rather than holding it where it is.
+  bool motion_anticipation = true;
 };
 
 // How a face is seen at one instant.
@@ -37,8 +48,11 @@ struct FaceView {
   double factor = 1;    // eq. 3
 };
 
-// Eq. 3 for the triangle (a, b, c), counter-clockwise seen from its outer side.
-FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p);
+// Eq. 3 for the triangle (a, b, c), counter-clockwise seen from its outer side. With `depth` (the
+// scene seen by the frustum's camera), a face turned away counts as facing the camera unless
+// the depth image hides it (ViewParams::back_occlusion).
+FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p,
+                   const DepthImage* depth = nullptr);
 
 // The camera over the anticipation window [t, t + L + T] (L the lead): frusta at offsets tau,
 // increasing, with their weights w(tau) = 1 up to L, then 1 - (tau - L) / T (eq. 4 when L = 0);
@@ -46,12 +60,22 @@ FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const V
 // the new shot), so a cut is never missed.
 struct AnticipationWindow {
   AnticipationWindow(const CameraPath& path, double t, double frame_time, const ViewParams& p);
-  std::vector<Frustum> frusta;  // frusta[0] is the camera now
+  std::vector<Camera> cameras;  // cameras[0] is the camera now
+  std::vector<Frustum> frusta;  // of the cameras
   std::vector<double> weights;  // weights[0] = 1
+  std::vector<double> offsets;  // s: the samples' times after t, offsets[0] = 0
 };
 
-// Eq. 4: v(t) = max over tau of w(tau) v~(t + tau), the face held where it is.
-double anticipated_view_factor(const AnticipationWindow& window, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p);
+// The depth images of `triangles` (the scene's bodies and garments, held where they are) from
+// each of the window's cameras, for the back-face rule; empty unless p.back_occlusion.
+std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const std::vector<Triangle>& triangles, const ViewParams& p,
+                                         int threads = 1);
+
+// Eq. 4: v(t) = max over tau of w(tau) v~(t + tau), the face held where it is; `depth`, when
+// given, holds occlusion_images(window, ...) (one image a camera).
+// With `velocity` (the corners'), the face is moved along it to each sample's time instead.
+double anticipated_view_factor(const AnticipationWindow& window, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p,
+                               const std::vector<DepthImage>* depth = nullptr, const std::array<Vec3, 3>* velocity = nullptr);
 
 // Section 3.3: across every edge where the factors of its two faces differ by more than the
 // threshold, the less visible face takes their average (the larger such average if it has

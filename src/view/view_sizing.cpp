@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <stdexcept>
 
 namespace vdc {
 
@@ -25,11 +26,21 @@ Mat2 screen_space_bounds(const Mat2& m, const Mat23& projection_jacobian, const 
 ViewSizing::ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads)
     : path_(path), params_(params), time_(time), frame_time_(frame_time), threads_(threads) {}
 
-void ViewSizing::evaluate(const Mesh& mesh) {
+double ViewSizing::anticipated_factor(const Mesh& mesh, FaceId f, const AnticipationWindow& window, const std::vector<DepthImage>* occluders) const {
+  const Vec3 &a = mesh.x(mesh.face_node(f, 0)), &b = mesh.x(mesh.face_node(f, 1)), &c = mesh.x(mesh.face_node(f, 2));
+  if (!params_.motion_anticipation) return anticipated_view_factor(window, a, b, c, params_, occluders);
+  const std::array<Vec3, 3> velocity = {mesh.v(mesh.face_node(f, 0)), mesh.v(mesh.face_node(f, 1)), mesh.v(mesh.face_node(f, 2))};
+  return anticipated_view_factor(window, a, b, c, params_, occluders, &velocity);
+}
+
+void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders) {
   factor_.assign(static_cast<std::size_t>(mesh.face_capacity()), 1.0);
   visible_.assign(factor_.size(), 0);
   counts_ = ViewCounts{};
   const AnticipationWindow window(path_, time_, frame_time_, params_);
+  if (occluders != nullptr && occluders->empty()) occluders = nullptr;
+  if (occluders != nullptr && occluders->size() != window.cameras.size())
+    throw std::logic_error("ViewSizing::evaluate: occlusion images of another window");
   const bool settling = time_ + 1e-9 < params_.settle;  // frame times are sums of frame_time
   std::vector<FaceId> faces;
   for (FaceId f : mesh.faces()) faces.push_back(f);
@@ -39,11 +50,11 @@ void ViewSizing::evaluate(const Mesh& mesh) {
   for (int64_t i = 0; i < n; ++i) {
     const FaceId f = faces[static_cast<std::size_t>(i)];
     const Vec3 &a = mesh.x(mesh.face_node(f, 0)), &b = mesh.x(mesh.face_node(f, 1)), &c = mesh.x(mesh.face_node(f, 2));
-    const FaceView view = face_view(window.frusta.front(), a, b, c, params_);
+    const FaceView view = face_view(window.frusta.front(), a, b, c, params_, occluders != nullptr ? &occluders->front() : nullptr);
     kind[static_cast<std::size_t>(i)] = view.distance > 0 ? 2 : view.front ? 0 : 1;
     visible_[static_cast<std::size_t>(f.idx)] = kind[static_cast<std::size_t>(i)] == 0;
     factor_[static_cast<std::size_t>(f.idx)] =
-        view.factor >= 1 || settling ? 1.0 : anticipated_view_factor(window, a, b, c, params_);
+        view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
   }
   for (char k : kind) {
     if (k == 0) ++counts_.visible;

@@ -1,7 +1,8 @@
 // View-dependent sizing (Koh, Narain and O'Brien, "View-Dependent Adaptive Cloth Simulation",
 // SCA 2014, section 3): the camera's modification of the physical
 // sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
-// face's view factor (eqs. 3 and 4, then silhouette resampling); modify() scales the physical
+// face's view factor (eqs. 3 and 4, each face moved along its nodes' velocities over eq. 4's
+// window unless motion_anticipation is off, then silhouette resampling); modify() scales the physical
 // tensors by v^2 (eq. 2) but never below the velocity criterion (what the camera does not see
 // still has to move as the seen cloth does), and, on faces visible now, bounds them in screen
 // space so that no edge is asked to be shorter than l_min pixels (eqs. 5 to 8) nor, when l_max
@@ -24,20 +25,22 @@ Mat2 screen_space_bounds(const Mat2& m, const Mat23& projection_jacobian, const 
 
 struct ViewCounts {
   int visible = 0;       // in frame, outer side towards the camera
-  int back_facing = 0;   // in frame, outer side away
+  int back_facing = 0;   // in frame, outer side away (and hidden, with occluders)
   int out_of_frame = 0;  // not in frame
 };
 
 class ViewSizing final : public FaceSizingModifier {
  public:
   ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads = 1);
-  // View factors of the mesh's faces at the current positions and time.
-  void evaluate(const Mesh& mesh);
+  // View factors of the mesh's faces at the current positions and time; `occluders`, when given
+  // and not empty, are occlusion_images() of the same window (the back-face rule looks).
+  void evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders = nullptr);
   void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const override;
   const std::vector<double>& factors() const { return factor_; }  // by face index
   const ViewCounts& counts() const { return counts_; }
 
  private:
+  double anticipated_factor(const Mesh& mesh, FaceId f, const AnticipationWindow& window, const std::vector<DepthImage>* occluders) const;
   const CameraPath& path_;
   ViewParams params_;
   double time_, frame_time_;

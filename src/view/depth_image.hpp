@@ -1,0 +1,60 @@
+// What stands in front of cloth seen from the camera: a depth image (z-buffer) of the scene's
+// opaque triangles, bodies and garments, at a fraction of the camera's resolution. The view
+// factor asks it whether a face turned away from the camera is really hidden (Koh et al. 2014's
+// back-face rule, section 3.1, assumes it is): the inside of a hakama lifted by a kick or of a
+// flared skirt faces away from the camera and is in plain view.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "core/math.hpp"
+#include "view/camera.hpp"
+
+namespace vdc {
+
+// Walks the pixels whose centres lie in the screen triangle (a, b, c) (pixel coordinates, z the
+// corners' camera depths), clipped to a width x height image, and calls visit(x, y, wa, wb, wc,
+// depth): the pixel, its barycentric weights and its depth interpolated as 1/z (linear in screen
+// space). Degenerate triangles visit nothing.
+template <class Visit>
+void rasterize_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const std::array<double, 3>& z, int width, int height, Visit&& visit) {
+  const double area = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  if (!(std::abs(area) > 1e-12)) return;
+  const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}))));
+  const int x1 = std::min(width - 1, static_cast<int>(std::ceil(std::max({a.x(), b.x(), c.x()}))));
+  const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y(), b.y(), c.y()}))));
+  const int y1 = std::min(height - 1, static_cast<int>(std::ceil(std::max({a.y(), b.y(), c.y()}))));
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const Vec2 p(x + 0.5, y + 0.5);
+      // Barycentric weights from the signed areas of the sub-triangles opposite each corner.
+      const double wa = ((b - p).x() * (c - p).y() - (b - p).y() * (c - p).x()) / area;
+      const double wb = ((c - p).x() * (a - p).y() - (c - p).y() * (a - p).x()) / area;
+      const double wc = 1 - wa - wb;
+      if (wa < 0 || wb < 0 || wc < 0) continue;
+      visit(x, y, wa, wb, wc, 1.0 / (wa / z[0] + wb / z[1] + wc / z[2]));
+    }
+}
+
+class DepthImage {
+ public:
+  // The nearest surface of `triangles` seen by `camera` at `scale` times its image size; a
+  // triangle with a corner in front of the near plane is left out (it hides nothing then).
+  // `erosion` pixels: each pixel keeps the farthest of the nearest depths within that many
+  // pixels, so an occluder's edge hides nothing within `erosion` pixels of it.
+  DepthImage(const Camera& camera, const std::vector<Triangle>& triangles, double scale, int erosion);
+  // x lies behind that surface by more than `margin` metres (false outside the image).
+  bool hidden(const Vec3& x, double margin) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  Camera camera_;
+  double scale_;
+  int width_, height_;
+  std::vector<double> depth_;  // row-major, +infinity where nothing is near enough to hide
+};
+
+}  // namespace vdc
