@@ -139,6 +139,7 @@ TEST(BackFaceRule, TheInsideOfABowlIsSeenTheFarSideOfABallIsNot) {
 // out from behind the wall's edge: the factor is the weight of the first sample that sees it.
 TEST(BackFaceRule, AnticipationSeesTheFaceComeOutFromBehindTheWall) {
   ViewParams p;  // T = 5 frames, 4 samples a frame
+  p.back_occlusion = true;
   const double frame = 0.04;
   // The camera slides 4 m to the right over 1 s, always looking down -z.
   std::vector<CameraKey> keys{{0.0, Vec3(0, 0, 5), Vec3(0, 0, 0), false}, {1.0, Vec3(4, 0, 5), Vec3(4, 0, 0), false}};
@@ -151,6 +152,9 @@ TEST(BackFaceRule, AnticipationSeesTheFaceComeOutFromBehindTheWall) {
   scene.push_back(t);
   const std::vector<DepthImage> images = occlusion_images(window, scene, p);
   ASSERT_EQ(images.size(), window.cameras.size());
+  p.back_occlusion = false;
+  EXPECT_TRUE(occlusion_images(window, scene, p).empty());  // the seed's rule needs none
+  p.back_occlusion = true;
   // The first sample whose camera sees every corner and the centre.
   double expected = p.v_back;
   for (std::size_t k = 0; k < images.size(); ++k) {
