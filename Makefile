@@ -22,10 +22,11 @@ build: deps configure
 
 # build-asan/: the unit tests under AddressSanitizer and UndefinedBehaviorSanitizer, at -O1 with
 # line tables only: enough for the reports' file and line, and it compiles in two thirds of the
-# time -O2 takes, while the tests run as fast.
+# time -O2 takes, while the tests run as fast. Unity files (eight sources each) halve the
+# layers' compile time again; build/ stays one object a source, as the simulator is measured.
 build-asan: deps
 	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-	  -DVDCLOTH_SANITIZE=ON -DVDCLOTH_TESTS=ON -DVDCLOTH_SCENE_TESTS=OFF -DVDCLOTH_BENCH=OFF
+	  -DVDCLOTH_SANITIZE=ON -DVDCLOTH_UNITY=ON -DVDCLOTH_TESTS=ON -DVDCLOTH_SCENE_TESTS=OFF -DVDCLOTH_BENCH=OFF
 	cmake --build build-asan -j $(JOBS)
 
 run: deps configure

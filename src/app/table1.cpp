@@ -22,6 +22,7 @@
 #include "core/error.hpp"
 #include "core/resource_usage.hpp"
 #include "output/checkpoint.hpp"
+#include "output/run_output.hpp"
 #include "scene/scene.hpp"
 
 extern char** environ;
@@ -122,14 +123,6 @@ void read_check_status(const std::string& dir, Run& r) {
 // RUN/run_status.txt: exit status, peak memory, CPU seconds and steal, read back by --tables-only.
 void write_run_status(const std::string& dir, const Run& r) {
   std::ofstream(dir + "/run_status.txt") << r.status << " " << r.peak_kib << " " << r.cpu_seconds << " " << r.steal << "\n";
-}
-
-// The run in `dir` finished all of its `frames` (its summary.json says so).
-bool run_is_done(const std::string& dir, int frames) {
-  std::ifstream in(dir + "/summary.json");
-  if (!in) return false;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  return !j.is_discarded() && j.value("status", "") == "done" && j.value("frames", -1) == frames;
 }
 
 // CPU time, peak memory and steal from the run's summary.json, which sums them over every

@@ -15,6 +15,7 @@
 #include "core/error.hpp"
 #include "core/mesh.hpp"
 #include "core/mesh_build.hpp"
+#include "support/text.hpp"
 
 namespace vdc {
 namespace {
@@ -39,7 +40,7 @@ int count_seams(const Mesh& m) {
   return n;
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using test::contains;
 
 // The only vert of a node of a seamless mesh. build_mesh numbers verts in order of first use, so
 // vert k is in general not the vert of node k.

@@ -19,6 +19,7 @@
 #include "core/mesh.hpp"
 #include "core/mesh_build.hpp"
 #include "io/obj.hpp"
+#include "support/text.hpp"
 
 namespace vdc {
 namespace {
@@ -27,7 +28,7 @@ namespace fs = std::filesystem;
 
 std::string data_path(const std::string& name) { return std::string(VDCLOTH_TEST_DATA) + "/" + name; }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using test::contains;
 
 // A file in the temp directory with a name no other test (or test process) uses; removed at the end.
 class TempFile {

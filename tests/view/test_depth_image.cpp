@@ -6,22 +6,12 @@
 
 #include "view/depth_image.hpp"
 #include "view/view_factor.hpp"
+#include "support/front_camera.hpp"
 
 namespace vdc {
 namespace {
 
-// A camera at (0, 0, 5) looking down -z at the origin; 40 degrees, 1280x720, near 0.1, far 10.
-Camera front_camera() {
-  Camera c;
-  c.position = Vec3(0, 0, 5);
-  c.target = Vec3::Zero();
-  c.fov_y_degrees = 40;
-  c.width = 1280;
-  c.height = 720;
-  c.near = 0.1;
-  c.far = 10;
-  return c;
-}
+using test::front_camera;
 
 // The square [-1, 1]^2 in the plane z = 0, facing +z.
 std::vector<Triangle> wall() {

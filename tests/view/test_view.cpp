@@ -7,22 +7,12 @@
 
 #include "core/mesh_build.hpp"
 #include "view/view_sizing.hpp"
+#include "support/front_camera.hpp"
 
 namespace vdc {
 namespace {
 
-// A camera at (0, 0, 5) looking down -z at the origin; near 0.1, far 10, 40 degrees, 1280x720.
-Camera front_camera() {
-  Camera c;
-  c.position = Vec3(0, 0, 5);
-  c.target = Vec3::Zero();
-  c.fov_y_degrees = 40;
-  c.width = 1280;
-  c.height = 720;
-  c.near = 0.1;
-  c.far = 10;
-  return c;
-}
+using test::front_camera;
 
 // A small triangle centred at p, counter-clockwise seen from +z (its outer side faces +z), or
 // from -z when `flipped`.
