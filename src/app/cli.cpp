@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "output/camera_export.hpp"
 #include "output/checkpoint.hpp"
 #include "output/run_output.hpp"
 #include "scene/scene.hpp"
@@ -47,6 +48,14 @@ const char* kMainHelp =
     "3 a failure part-way: a simulation that could not be recovered, results that could not be written,\n"
     "memory that ran out or an unexpected error (check: a crossing; fidelity: a failed verdict).\n";
 
+const char* kBenchHelp =
+    "usage: vdcloth bench table1 [options]\n"
+    "\n"
+    "Benchmarks made of whole runs. There is one: table1, Koh, Narain and O'Brien's Table 1 on the\n"
+    "project's scenes (fixed, adaptive and view runs of karate, solo-dancer and dancers-10; faces\n"
+    "and seconds per frame, speed-ups). `vdcloth bench table1 --help` gives its options. The\n"
+    "micro-benchmarks of the build (build/bench/vdcloth_bench) are Google Benchmark's.\n";
+
 const char* kRunHelp =
     "usage: vdcloth run SCENE.json [--mode fixed|adaptive|view] [--frames N] [--out DIR] [--threads N]\n"
     "                  [--mesh-every N] [--checkpoint-every N] [--resume] [--group NAME]... [--perturb E]\n"
@@ -54,7 +63,9 @@ const char* kRunHelp =
     "\n"
     "Simulates SCENE.json and writes DIR/stats.csv (one row a frame), DIR/frames/ (one OBJ per garment\n"
     "and obstacle per frame: cloth_<name>.<frame>.obj, obstacle_<name>.<frame>.obj, frame 0000 is the\n"
-    "initial state) and DIR/summary.json.\n"
+    "initial state; coordinates in metres to the micrometre; in view mode also a PLY of each garment's\n"
+    "view factors), DIR/summary.json and, when the scene has a camera, DIR/camera.json and\n"
+    "DIR/camera.chan (the shot camera at every frame, for compositing and 3D packages).\n"
     "\n"
     "options:\n"
     "  --mode M      fixed (non-adaptive mesh), adaptive (remeshed every frame) or view (adaptive,\n"
@@ -299,6 +310,9 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     return kExitSimulationFailed;
   };
   try {
+    const Scene& shot = sim.parts().front()->scene();
+    if (shot.camera) write_camera_files(*shot.camera, shot.frame_time, frames, dir);
+    else remove_camera_files(dir);  // of an earlier run of another scene
     if (prerolls) {
       // Before the shot, characters move from the pose their garments were made in into the
       // shot's first pose; nothing of it is written (Scene::preroll_frames).
@@ -372,6 +386,10 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
       return kExitOk;
     }
     if (args[0] == "bench") {
+      if (args.size() >= 2 && (args[1] == "--help" || args[1] == "-h")) {
+        out << kBenchHelp;
+        return kExitOk;
+      }
       if (args.size() < 2) throw UsageError("bench expects a benchmark name: table1");
       if (args[1] != "table1") throw UsageError("bench: unknown benchmark '" + args[1] + "' (there is table1)");
       return table1_command(std::vector<std::string>(args.begin() + 2, args.end()), out, err);

@@ -113,16 +113,30 @@ Mesh read_obj(const std::string& path, bool require_uv) {
   }
 }
 
-bool write_obj(const Mesh& mesh, const std::string& path) {
+bool write_obj(const Mesh& mesh, const std::string& path, const ObjWriting& how) {
   MeshSource src = mesh_source(mesh);
   TextFile f(path);
   if (!f.ok()) return false;
-  f.text("# vdcloth mesh: v world position, vt material position (m)\n");
-  for (const Vec3& p : src.positions) f.text("v ").number(p.x()).text(" ").number(p.y()).text(" ").number(p.z()).text("\n");
-  for (const Vec2& u : src.uvs) f.text("vt ").number(u.x()).text(" ").number(u.y()).text("\n");
+  auto coordinate = [&](double value) -> TextFile& { return how.decimals < 0 ? f.number(value) : f.fixed(value, how.decimals); };
+  f.text(how.material ? "# vdcloth mesh: v world position, vt material position (m)\n" : "# vdcloth mesh: v world position (m)\n");
+  for (const Vec3& p : src.positions) {
+    f.text("v ");
+    coordinate(p.x()).text(" ");
+    coordinate(p.y()).text(" ");
+    coordinate(p.z()).text("\n");
+  }
+  if (how.material)
+    for (const Vec2& u : src.uvs) {
+      f.text("vt ");
+      coordinate(u.x()).text(" ");
+      coordinate(u.y()).text("\n");
+    }
   for (const auto& face : src.faces) {
     f.text("f");
-    for (const auto& corner : face) f.text(" ").integer(corner.node + 1).text("/").integer(corner.uv + 1);
+    for (const auto& corner : face) {
+      f.text(" ").integer(corner.node + 1);
+      if (how.material) f.text("/").integer(corner.uv + 1);
+    }
     f.text("\n");
   }
   return f.close();

@@ -16,7 +16,16 @@ MeshSource read_obj_source(const std::string& path, bool require_uv, std::vector
 // Reads and validates a garment mesh. Throws InputError naming the file, the line and the problem.
 Mesh read_obj(const std::string& path, bool require_uv = true);
 
-// Writes v, vt and f v/vt so that read_obj gives back the same mesh. Returns false on I/O failure.
-bool write_obj(const Mesh& mesh, const std::string& path);
+// How write_obj writes a mesh: with material-space `vt` (garments) or without (obstacles, whose
+// material triangles mean nothing), and its coordinates exact (the shortest form that reads back
+// to the same double) or rounded to `decimals` places after the point.
+struct ObjWriting {
+  bool material = true;
+  int decimals = -1;  // -1: exact
+};
+
+// Writes v, vt and f v/vt (v and f v without material) so that read_obj gives back the same mesh,
+// to the rounding asked for. Returns false on I/O failure.
+bool write_obj(const Mesh& mesh, const std::string& path, const ObjWriting& how = {});
 
 }  // namespace vdc

@@ -2,13 +2,14 @@
 #include "io/text_file.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstring>
 
 namespace vdc {
 
 namespace {
 constexpr std::size_t kBufferBytes = 1 << 16;
-constexpr std::size_t kLongestNumber = 32;  // a double (shortest, or %.17g at most), or an int64, fits
+constexpr std::size_t kLongestNumber = 40;  // a double (shortest, %.17g, or below 1e15 with 17 decimals), or an int64, fits
 }  // namespace
 
 TextFile::TextFile(const std::string& path) : file_(std::fopen(path.c_str(), "w")), buffer_(kBufferBytes) {}
@@ -45,6 +46,20 @@ TextFile& TextFile::append(Args... args) {
 TextFile& TextFile::number(double value) { return append(value); }
 
 TextFile& TextFile::number(double value, int precision) { return append(value, std::chars_format::general, precision); }
+
+TextFile& TextFile::fixed(double value, int decimals) {
+  if (!(std::abs(value) < 1e15)) return append(value);
+  make_room(kLongestNumber);
+  char* const begin = buffer_.data() + used_;
+  char* end = std::to_chars(begin, buffer_.data() + buffer_.size(), value, std::chars_format::fixed, decimals).ptr;
+  if (decimals > 0) {
+    while (end[-1] == '0') --end;
+    if (end[-1] == '.') --end;
+  }
+  if (end - begin == 2 && begin[0] == '-' && begin[1] == '0') *begin = '0', end = begin + 1;
+  used_ = static_cast<std::size_t>(end - buffer_.data());
+  return *this;
+}
 
 TextFile& TextFile::integer(int64_t value) { return append(value); }
 

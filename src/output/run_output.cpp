@@ -39,6 +39,10 @@ std::optional<FrameFileName> parse_frame_file(const std::string& file) {
   return FrameFileName{m[1].str(), m[4].str(), std::stoi(m[3].str())};
 }
 
+// Frame meshes' coordinates, in metres, to the micrometre: 1/2000 of the default collision
+// thickness, a float's step 8 m from the origin, and about half the bytes of the exact form.
+constexpr int kFrameDecimals = 6;
+
 std::string frame_file(const std::string& dir, const std::string& kind, const std::string& name, int frame,
                        const std::string& extension = ".obj") {
   char num[16];
@@ -138,17 +142,17 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
     for (std::size_t g = 0; g < scene.garments.size(); ++g) {
       const std::string& name = scene.garments[g].name;
       const Mesh& mesh = part->garment_mesh(g);
-      if (!write_obj(mesh, frame_file(dir_, "cloth", name, frame))) throw OutputError(frame_file(dir_, "cloth", name, frame), "cannot write");
+      if (!write_obj(mesh, frame_file(dir_, "cloth", name, frame), ObjWriting{true, kFrameDecimals})) throw OutputError(frame_file(dir_, "cloth", name, frame), "cannot write");
       // View mode: each garment's faces with their view factors, beside the OBJ.
       if (mesh.face_attrs().has(kViewFactorAttr) &&
-          !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), "view", kViewFactorAttr))
+          !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), "view", kViewFactorAttr, kFrameDecimals))
         throw OutputError(frame_file(dir_, "cloth", name, frame, ".ply"), "cannot write");
     }
     // Obstacles of no group are in every part: written once, from the first.
     for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
       const ObstacleSpec& spec = scene.obstacles[o];
       if ((part == run.parts().front() || !spec.group.empty()) &&
-          !write_obj(part->obstacle_mesh(o), frame_file(dir_, "obstacle", spec.name, frame)))
+          !write_obj(part->obstacle_mesh(o), frame_file(dir_, "obstacle", spec.name, frame), ObjWriting{false, kFrameDecimals}))
         throw OutputError(frame_file(dir_, "obstacle", spec.name, frame), "cannot write");
     }
   }

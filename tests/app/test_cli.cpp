@@ -22,6 +22,8 @@
 #include "app/table1.hpp"
 #include "core/binary_io.hpp"
 #include "core/error.hpp"
+#include "core/mesh.hpp"
+#include "output/checkpoint.hpp"
 #include "view/camera.hpp"
 
 namespace vdc {
@@ -377,6 +379,18 @@ void CliTest::resumed_run_matches(const std::string& mode, bool with_ball) {
     const std::string file = "cloth_s.000" + std::to_string(f) + ".obj";
     EXPECT_EQ(read_file(pieces / "frames" / file), read_file(whole / "frames" / file)) << file;
   }
+  // The frames are rounded to the micrometre; the last checkpoints hold the state exactly.
+  const Checkpoint whole_end = read_checkpoint((whole / "checkpoint.bin").string());
+  const Checkpoint pieces_end = read_checkpoint((pieces / "checkpoint.bin").string());
+  ASSERT_EQ(whole_end.frame, 6);
+  ASSERT_EQ(pieces_end.frame, 6);
+  const Mesh& a = whole_end.parts.at(0).garments.at(0);
+  const Mesh& b = pieces_end.parts.at(0).garments.at(0);
+  ASSERT_EQ(a.num_nodes(), b.num_nodes());
+  for (NodeId n : a.nodes()) {
+    EXPECT_EQ(a.x(n), b.x(n)) << "node " << n.idx;
+    EXPECT_EQ(a.v(n), b.v(n)) << "node " << n.idx;
+  }
   const std::vector<std::string> rows = stats_without_timings(whole / "stats.csv");
   ASSERT_EQ(rows.size(), 7u);
   EXPECT_EQ(stats_without_timings(pieces / "stats.csv"), rows);
@@ -496,6 +510,13 @@ TEST_F(CliTest, Table1UsageErrors) {
   EXPECT_FALSE(fs::exists(out_dir()));
   EXPECT_EQ(run({"bench", "table1", "--help"}), kExitOk);
   EXPECT_NE(out_.str().find("table1.md"), std::string::npos);
+  EXPECT_EQ(run({"bench", "--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("vdcloth bench table1"), std::string::npos) << out_.str();
+  // Every command's help: exit 0 and its usage line.
+  for (const char* command : {"run", "render", "check", "fidelity"}) {
+    EXPECT_EQ(run({command, "--help"}), kExitOk) << command;
+    EXPECT_NE(out_.str().find(std::string("usage: vdcloth ") + command), std::string::npos) << command << ": " << out_.str();
+  }
 }
 
 // The whole command on three tiny stand-in scenes (one of them with two groups), through the
@@ -574,6 +595,44 @@ const std::string kFidelityShotsHeader =
 const char* kCutCamera =
     R"("camera": {"fov": 40, "width": 96, "height": 72, "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}, )"
     R"({"time": 0.07, "position": [0.5, 1.2, 1.8], "target": [0.5, -0.2, -0.5], "cut": true}]}, )";
+
+// A run with a camera writes it frame by frame (the cut at 0.07 s falls in frame 2, at 0.08 s);
+// a run of a scene without one into the same directory leaves no camera of the earlier run.
+TEST_F(CliTest, RunWritesTheCameraOfEveryFrame) {
+  const std::string path = scene("", kCutCamera);
+  ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "4", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
+  const nlohmann::json camera = nlohmann::json::parse(std::ifstream(dir_ / "out" / "camera.json"));
+  ASSERT_EQ(camera["frames"].size(), 5u);
+  for (int f = 0; f <= 4; ++f) {
+    EXPECT_EQ(camera["frames"][f]["cut"], f == 2) << f;
+    EXPECT_EQ(camera["frames"][f]["shot"], f < 2 ? 0 : 1) << f;
+  }
+  EXPECT_EQ(camera["frames"][3]["position"], nlohmann::json({0.5, 1.2, 1.8}));
+  EXPECT_EQ(camera["width"], 96);
+  std::istringstream chan(read_file(dir_ / "out" / "camera.chan"));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(chan, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);
+  EXPECT_EQ(lines[3].rfind("3 0.5 1.2 1.8 ", 0), 0u) << lines[3];
+  EXPECT_EQ(lines[3].substr(lines[3].rfind(' ')), " 40") << lines[3];
+  // Obstacle-free sheet frames are rounded to the micrometre: no coordinate longer than 6 decimals.
+  const std::string obj = read_file(dir_ / "out" / "frames" / "cloth_s.0004.obj");
+  EXPECT_EQ(obj.find("0000000"), std::string::npos);
+  std::istringstream lines_of_obj(obj);
+  for (std::string line; std::getline(lines_of_obj, line);) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream in(line.substr(2));
+    for (std::string number; in >> number;) {
+      const auto point = number.find('.');
+      EXPECT_TRUE(point == std::string::npos || number.size() - point - 1 <= 6) << line;
+    }
+  }
+
+  ASSERT_EQ(run({"run", write("bare.json", read_file(scene())), "--out", out_dir(), "--frames", "1", "--threads", "1"}), kExitOk)
+      << err_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "camera.json"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "camera.chan"));
+}
 
 TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
   const std::string path = scene(", \"handles\": [{\"uv\": [[0, 1], [1, 1]]}]", kCutCamera);
@@ -777,7 +836,12 @@ TEST_F(CliTest, PerturbChangesTheRunAndAResumptionMustKeepIt) {
   ASSERT_EQ(run({"run", path, "--out", perturbed.string(), "--frames", "2", "--threads", "1", "--resume", "--perturb", "1e-6"}), kExitOk)
       << err_.str();
   EXPECT_EQ(read_file(perturbed / "frames" / "cloth_s.0000.obj"), read_file(plain / "frames" / "cloth_s.0000.obj"));
-  EXPECT_NE(read_file(perturbed / "frames" / "cloth_s.0002.obj"), read_file(plain / "frames" / "cloth_s.0002.obj"));
+  // The sheet has fallen about 3 cm by frame 2, a millionth of it below the frames' micrometre:
+  // the energies (nine digits) tell the runs apart. Gravity's pull grew by 1e-6, so the
+  // gravitational energy (m g h, h < 0 from the start) moves by one part in a million at least.
+  const double u_plain = stats_column(plain / "stats.csv", "gravitational_energy", 2);
+  const double u_perturbed = stats_column(perturbed / "stats.csv", "gravitational_energy", 2);
+  EXPECT_GT(std::abs(u_perturbed - u_plain), 0.5e-6 * std::abs(u_plain)) << u_plain << " " << u_perturbed;
   EXPECT_EQ(nlohmann::json::parse(std::ifstream(perturbed / "summary.json"))["perturbation"].get<double>(), 1e-6);
   EXPECT_EQ(nlohmann::json::parse(std::ifstream(plain / "summary.json"))["perturbation"].get<double>(), 0.0);
   // And the other way: an unperturbed run resumed with a perturbation.

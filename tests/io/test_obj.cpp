@@ -196,6 +196,44 @@ TEST(ObjRoundTrip, EditedMeshComesBackWithSameFaces) {
   EXPECT_EQ(seam_edges(back), seam_edges(m));
 }
 
+// Rounded to the micrometre (as a run writes its frames): every coordinate within half a
+// micrometre of the mesh's, the same faces and seams; 1/3 m is written as 0.333333.
+TEST(ObjRoundTrip, RoundedToDecimalsComesBackWithinHalfAUnit) {
+  Mesh m = build_mesh(two_piece_grid());
+  TempFile tmp;
+  ASSERT_TRUE(write_obj(m, tmp.path(), ObjWriting{true, 6}));
+  std::ifstream in(tmp.path());
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(contains(text, "\nv 0.333333 0 0\n")) << text;
+  Mesh back = read_obj(tmp.path());
+  ASSERT_EQ(back.num_nodes(), m.num_nodes());
+  ASSERT_EQ(back.num_verts(), m.num_verts());
+  for (NodeId n : m.nodes()) EXPECT_LE((back.x(n) - m.x(n)).cwiseAbs().maxCoeff(), 0.5e-6 + 1e-15) << n.idx;
+  for (VertId v : m.verts()) EXPECT_LE((back.u(v) - m.u(v)).cwiseAbs().maxCoeff(), 0.5e-6 + 1e-15) << v.idx;
+  for (FaceId f : m.faces()) EXPECT_EQ(back.face_verts(f), m.face_verts(f)) << f.idx;
+  EXPECT_EQ(seam_edges(back), seam_edges(m));
+}
+
+// Without material coordinates (obstacles): no vt, faces as "f a b c", read back as an obstacle
+// with the same positions and faces.
+TEST(ObjRoundTrip, WithoutMaterialHasNoTextureCoordinates) {
+  Mesh m = build_mesh(make_grid(0.7, 1.3, 5, 4));
+  TempFile tmp;
+  ASSERT_TRUE(write_obj(m, tmp.path(), ObjWriting{false, -1}));
+  std::ifstream in(tmp.path());
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_FALSE(contains(text, "vt ")) << text;
+  EXPECT_FALSE(contains(text, "/")) << text;
+  EXPECT_TRUE(contains(text, "\nf 1 2 8\n")) << text;
+  const MeshSource back = read_obj_source(tmp.path(), false);
+  const MeshSource src = mesh_source(m);
+  ASSERT_EQ(back.positions.size(), src.positions.size());
+  for (std::size_t i = 0; i < src.positions.size(); ++i) EXPECT_EQ(back.positions[i], src.positions[i]) << i;
+  ASSERT_EQ(back.faces.size(), src.faces.size());
+  for (std::size_t i = 0; i < src.faces.size(); ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(back.faces[i][k].node, src.faces[i][k].node) << i;
+}
+
 TEST(ObjRoundTrip, WriteToUnwritablePathFails) {
   Mesh m = build_mesh(make_grid(1, 1, 1, 1));
   TempFile dir_that_is_missing("");

@@ -95,3 +95,18 @@ TEST(TextFile, UnwritablePathIsReported) {
   out.text("x").number(1.5).integer(3);  // harmless
   EXPECT_FALSE(out.close());
 }
+
+// Rounded to a number of decimals: hand-written expectations, no trailing zeros, no "-0", and
+// what cannot be written in fixed form (huge, infinite, NaN) in its shortest form.
+TEST(TextFile, FixedRoundsAndDropsTrailingZeros) {
+  const std::string path = temp_path("fixed");
+  TextFile out(path);
+  ASSERT_TRUE(out.ok());
+  out.fixed(0.5, 6).text(" ").fixed(1.0, 6).text(" ").fixed(123.4567894, 6).text(" ").fixed(-0.0000004, 6).text(" ");
+  out.fixed(-0.0000006, 6).text(" ").fixed(-0.0, 6).text(" ").fixed(1.7, 0).text(" ").fixed(-0.3, 0).text(" ");
+  out.fixed(100.0, 3).text(" ").fixed(1e20, 6).text(" ").fixed(std::numeric_limits<double>::infinity(), 6).text(" ");
+  out.fixed(999999999999999.0, 17).text("\n");
+  ASSERT_TRUE(out.close());
+  EXPECT_EQ(contents(path), "0.5 1 123.456789 0 -0.000001 0 2 0 100 1e+20 inf 999999999999999\n");
+  std::filesystem::remove(path);
+}

@@ -1,0 +1,113 @@
+// The shot camera exported frame by frame (camera.json, camera.chan).
+#include "output/camera_export.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "io/text_file.hpp"
+
+namespace vdc {
+
+namespace {
+
+constexpr double kDegrees = 180.0 / M_PI;
+// Camera files' coordinates to the micrometre, angles to a millionth of a degree.
+constexpr int kDecimals = 6;
+
+nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+Vec3 zxy_euler_degrees(const Camera& camera) {
+  const auto [right, up, forward] = camera.basis();
+  Mat3 r;  // camera to world: its columns are the camera's x, y and z (z points backwards)
+  r.col(0) = right;
+  r.col(1) = up;
+  r.col(2) = -forward;
+  // Ry(b) Rx(a) Rz(c) has row 1 (ca sc, ca cc, -sa), column 2 (sb ca, -sa, cb ca).
+  const double a = std::asin(std::clamp(-r(1, 2), -1.0, 1.0));
+  double b, c;
+  if (std::abs(r(1, 2)) < 1 - 1e-12) {
+    b = std::atan2(r(0, 2), r(2, 2));
+    c = std::atan2(r(1, 0), r(1, 1));
+  } else {  // gimbal lock: the heading takes the whole turn about y
+    b = std::atan2(-r(2, 0), r(0, 0));
+    c = 0;
+  }
+  return Vec3(a, b, c) * kDegrees;
+}
+
+std::vector<CameraFrame> camera_frames(const CameraPath& path, double frame_time, int frames) {
+  std::vector<CameraFrame> out;
+  const double before = -std::numeric_limits<double>::infinity();
+  for (int f = 0; f <= frames; ++f) {
+    CameraFrame c;
+    c.frame = f;
+    c.time = f * frame_time;
+    c.camera = path.at(c.time);
+    c.shot = static_cast<int>(path.cuts_in(before, c.time).size());
+    c.cut = f > 0 && !path.cuts_in((f - 1) * frame_time, c.time).empty();
+    out.push_back(c);
+  }
+  return out;
+}
+
+void write_camera_files(const CameraPath& path, double frame_time, int frames, const std::string& dir) {
+  const std::vector<CameraFrame> shot = camera_frames(path, frame_time, frames);
+  const Camera& lens = path.lens();
+  const double fov_x = 2 * std::atan(std::tan(0.5 * lens.fov_y_degrees / kDegrees) * lens.width / lens.height) * kDegrees;
+
+  nlohmann::json j;
+  j["units"] = "m";
+  j["up_axis"] = "y";
+  j["frame_time"] = frame_time;
+  j["width"] = lens.width;
+  j["height"] = lens.height;
+  j["fov_y_degrees"] = lens.fov_y_degrees;
+  j["fov_x_degrees"] = fov_x;
+  j["near"] = lens.near;
+  j["far"] = lens.far;
+  j["rotation_order"] = "ZXY";
+  j["frames"] = nlohmann::json::array();
+  for (const CameraFrame& c : shot) {
+    const auto [right, up, forward] = c.camera.basis();
+    j["frames"].push_back({{"frame", c.frame},
+                           {"time", c.time},
+                           {"shot", c.shot},
+                           {"cut", c.cut},
+                           {"position", vec(c.camera.position)},
+                           {"target", vec(c.camera.target)},
+                           {"forward", vec(forward)},
+                           {"up", vec(up)},
+                           {"rotation_degrees", vec(zxy_euler_degrees(c.camera))}});
+  }
+  const std::string json_path = dir + "/camera.json";
+  std::ofstream json_file(json_path);
+  json_file << j.dump(1) << "\n";
+  if (!json_file.flush()) throw OutputError(json_path, "cannot write");
+
+  const std::string chan_path = dir + "/camera.chan";
+  TextFile chan(chan_path);
+  for (const CameraFrame& c : shot) {
+    const Vec3 rotation = zxy_euler_degrees(c.camera);
+    chan.integer(c.frame);
+    for (int k = 0; k < 3; ++k) chan.text(" ").fixed(c.camera.position[k], kDecimals);
+    for (int k = 0; k < 3; ++k) chan.text(" ").fixed(rotation[k], kDecimals);
+    chan.text(" ").fixed(lens.fov_y_degrees, kDecimals).text("\n");
+  }
+  if (!chan.close()) throw OutputError(chan_path, "cannot write");
+}
+
+void remove_camera_files(const std::string& dir) {
+  std::error_code ec;
+  for (const char* name : {"/camera.json", "/camera.chan"})
+    if (std::filesystem::remove(dir + name, ec); ec) throw OutputError(dir + name, "cannot remove this file of an earlier run");
+}
+
+}  // namespace vdc

@@ -1,0 +1,34 @@
+// The shot camera frame by frame, for other tools: DIR/camera.json (pose, lens, cuts) and
+// DIR/camera.chan (the channel file Nuke, Houdini and Blender's Nuke add-on read: frame,
+// translation, rotation in degrees, vertical field of view), both in the scene's metres, y up.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "view/camera.hpp"
+
+namespace vdc {
+
+// Euler angles in degrees (x, y, z) of the camera's orientation in Nuke's default rotation order
+// ZXY: camera-to-world = Ry(y) Rx(x) Rz(z), the camera looking down its -z with +y up (so x is the
+// pitch, y the heading, z the roll). Looking straight up or down, the roll is taken as 0.
+Vec3 zxy_euler_degrees(const Camera& camera);
+
+struct CameraFrame {
+  int frame = 0;
+  double time = 0;  // s, frame * frame_time
+  Camera camera;
+  int shot = 0;      // 0 until the first cut, then one more at each cut
+  bool cut = false;  // a cut in (the previous frame's time, this frame's time]
+};
+
+// Frames 0 to `frames` of the path, frame f at time f * frame_time.
+std::vector<CameraFrame> camera_frames(const CameraPath& path, double frame_time, int frames);
+
+// Writes DIR/camera.json and DIR/camera.chan for frames 0 to `frames`. Throws OutputError naming
+// the file that cannot be written.
+void write_camera_files(const CameraPath& path, double frame_time, int frames, const std::string& dir);
+// Removes DIR/camera.json and DIR/camera.chan if they are there.
+void remove_camera_files(const std::string& dir);
+
+}  // namespace vdc
