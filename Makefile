@@ -1,9 +1,10 @@
 # vdcloth: the two commands are `make run` and `make test` (see README.md).
 JOBS ?= $(shell nproc)
-# The main job: the solo dancer through the camera's view, first 120 frames (4.8 s of the shot).
+# The main job: the solo dancer through the camera's view, first 175 frames (7 s: the travelling
+# shot and the cut to the close-up at frame 150).
 SCENE ?= scenes/solo-dancer.json
 MODE ?= view
-FRAMES ?= 120
+FRAMES ?= 175
 OUT ?= out/solo-dancer
 
 .PHONY: all deps configure build build-asan run test bench fuzz clean

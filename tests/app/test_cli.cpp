@@ -601,6 +601,7 @@ const char* kCutCamera =
 TEST_F(CliTest, RunWritesTheCameraOfEveryFrame) {
   const std::string path = scene("", kCutCamera);
   ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "4", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find("to look at it: vdcloth render " + path + " " + out_dir() + " draws it"), std::string::npos) << out_.str();
   const nlohmann::json camera = nlohmann::json::parse(std::ifstream(dir_ / "out" / "camera.json"));
   ASSERT_EQ(camera["frames"].size(), 5u);
   for (int f = 0; f <= 4; ++f) {
@@ -632,6 +633,7 @@ TEST_F(CliTest, RunWritesTheCameraOfEveryFrame) {
       << err_.str();
   EXPECT_FALSE(fs::exists(dir_ / "out" / "camera.json"));
   EXPECT_FALSE(fs::exists(dir_ / "out" / "camera.chan"));
+  EXPECT_EQ(out_.str().find("to look at it"), std::string::npos) << "no camera, nothing to draw through";
 }
 
 TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
