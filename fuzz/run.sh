@@ -12,7 +12,7 @@ build=${1:-build-fuzz}
 seconds=${2:-900}
 shift $(($# < 2 ? $# : 2))
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(scene obj bvh checkpoint)
+[ ${#targets[@]} -eq 0 ] && targets=(scene obj bvh checkpoint ply)
 here=$(cd "$(dirname "$0")/.." && pwd)
 status=0
 for target in "${targets[@]}"; do

@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kRenderHelp =
-    "usage: vdcloth render SCENE.json RUN_DIR [--compare OTHER_RUN_DIR] [--every N] [--scale S] [--out DIR]\n"
+    "usage: vdcloth render SCENE.json RUN_DIR [--compare OTHER_RUN_DIR] [--colour garment|view] [--wireframe]\n"
+    "                      [--every N] [--scale S] [--out DIR]\n"
     "\n"
     "Draws the meshes of RUN_DIR/frames/ (written by `vdcloth run`) through the scene's camera at\n"
     "each frame's time: OUT/frame_NNNN.png. With --compare, the frames both runs have are drawn\n"
@@ -36,6 +37,10 @@ const char* kRenderHelp =
     "\n"
     "options:\n"
     "  --compare DIR   a second run of the same scene (another mode, say)\n"
+    "  --colour C      garment: each garment in its own colour (default); view: each cloth face\n"
+    "                  by its view factor, red at 1 (full resolution), green at 0.1, blue at 0.01\n"
+    "                  (from the frames' PLY files; a run without them, fixed or adaptive, is red)\n"
+    "  --wireframe     the cloth's mesh edges drawn over it (the remeshing made visible)\n"
     "  --every N       every Nth frame that has meshes (default: 1, all)\n"
     "  --scale S       image size relative to the camera's, 0.05 to 4 (default: 0.5)\n"
     "  --out DIR       output directory (default: RUN_DIR/render, or RUN_DIR/compare with --compare)\n";
@@ -44,6 +49,7 @@ struct RenderArgs {
   std::string scene, run, compare, out;
   int every = 1;
   double scale = 0.5;
+  DrawStyle style;
 };
 
 RenderArgs parse_render_args(const std::vector<std::string>& args) {
@@ -59,6 +65,12 @@ RenderArgs parse_render_args(const std::vector<std::string>& args) {
     else if (a == "--every") r.every = parse_positive_int(a, value());
     else if (a == "--out") r.out = value();
     else if (a == "--scale") r.scale = parse_number(a, value(), 0.05, 4);
+    else if (a == "--wireframe") r.style.wireframe = true;
+    else if (a == "--colour" || a == "--color") {
+      const std::string& c = value();
+      if (c != "garment" && c != "view") throw UsageError(a + " expects garment or view, got '" + c + "'");
+      r.style.view_colours = c == "view";
+    }
     else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for render (try vdcloth render --help)");
     else positional.push_back(a);
   }
@@ -89,14 +101,14 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
     if (index++ % r.every != 0) continue;
     const double time = frame * scene.frame_time;
     const Camera camera = scene.camera->at(time);
-    const DrawnFrame a = draw_frame(camera, frames.at(frame), r.scale);
+    const DrawnFrame a = draw_frame(camera, frames.at(frame), r.scale, r.style);
     std::string written;
     if (r.compare.empty()) {
       written = numbered(r.out, "frame", frame, ".png");
       pictures.push_back(written);
       if (!write_png(a.pixels.image, written)) throw OutputError(written, "cannot write");
     } else {
-      const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale);
+      const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale, r.style);
       const RenderComparison c = compare_renders(a.pixels, a.cloth, b.pixels, b.cloth);
       csv->stream() << frame << "," << time << "," << c.cloth_pixels_a << "," << c.cloth_pixels_b << "," << std::setprecision(4) << c.cloth_iou
                     << "," << c.mean_abs_diff << "\n";

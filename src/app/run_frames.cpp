@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "io/obj.hpp"
+#include "io/ply.hpp"
 
 namespace vdc {
 
@@ -19,17 +20,28 @@ const Vec3 kClothPalette[] = {{0.80, 0.25, 0.22}, {0.93, 0.72, 0.20}, {0.22, 0.4
 
 }  // namespace
 
-DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scale) {
+DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scale, const DrawStyle& style) {
   std::vector<RenderMesh> meshes;
   DrawnFrame drawn;
   std::size_t garments = 0;
   for (const auto& [key, path] : files) {  // in name order
     const bool cloth = key.rfind("cloth_", 0) == 0;
-    const MeshSource source = read_obj_source(path, false);
     RenderMesh mesh;
-    mesh.positions = source.positions;
-    mesh.faces = position_triangles(source);
-    mesh.colour = cloth ? kClothPalette[garments++ % std::size(kClothPalette)] : Vec3(0.78, 0.74, 0.70);
+    const fs::path factors = fs::path(path).replace_extension(".ply");
+    std::error_code ec;
+    if (cloth && style.view_colours && fs::exists(factors, ec)) {
+      const PlyFaceValues ply = read_ply_with_face_values(factors.string());
+      mesh.positions = ply.positions;
+      mesh.faces = ply.faces;
+      for (double v : ply.values) mesh.face_colours.push_back(view_factor_colour(v));
+    } else {
+      const MeshSource source = read_obj_source(path, false);
+      mesh.positions = source.positions;
+      mesh.faces = position_triangles(source);
+    }
+    mesh.colour = !cloth ? Vec3(0.78, 0.74, 0.70) : style.view_colours ? view_factor_colour(1.0) : kClothPalette[garments % std::size(kClothPalette)];
+    garments += cloth ? 1 : 0;
+    mesh.wireframe = cloth && style.wireframe;
     meshes.push_back(std::move(mesh));
     drawn.cloth.push_back(cloth);
   }

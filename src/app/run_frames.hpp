@@ -20,10 +20,18 @@ struct DrawnFrame {
   std::vector<char> cloth;
 };
 
+// How the cloth is drawn: each garment in its own colour, or each face by its view factor (from
+// the frame's PLY beside the OBJ; a run without one, fixed or adaptive, is at factor 1
+// everywhere); with or without its mesh's edges.
+struct DrawStyle {
+  bool view_colours = false;
+  bool wireframe = false;
+};
+
 // The frame's meshes through `camera` at `scale` times its image size; garments in colours given
 // in name order (the same garment has the same colour in every run of a scene), bodies grey.
 // Throws InputError naming a mesh file that cannot be read.
-DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scale);
+DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scale, const DrawStyle& style = {});
 
 // The frames every one of `runs` has meshes for, in increasing order.
 std::vector<int> frames_in_common(const std::vector<const std::map<int, FrameFiles>*>& runs);

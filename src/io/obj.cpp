@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "io/input_file.hpp"
 #include "io/text_file.hpp"
+#include "io/text_tokens.hpp"
 
 namespace vdc {
 
@@ -16,26 +17,6 @@ namespace {
 
 // The largest OBJ read: a mesh of some 20 million faces.
 constexpr std::uintmax_t kMaxObjBytes = std::uintmax_t{1} << 30;
-
-std::string line_place(int line) { return "line " + std::to_string(line); }
-
-double parse_number(const std::string& tok, const std::string& path, int line) {
-  double value = 0;
-  const char* begin = tok.data() + (tok.size() > 1 && tok[0] == '+' ? 1 : 0);  // from_chars refuses a leading '+'
-  auto res = std::from_chars(begin, tok.data() + tok.size(), value);
-  if (res.ec != std::errc() || res.ptr != tok.data() + tok.size() || !std::isfinite(value))
-    throw InputError(path, line_place(line), "expected a number, found '" + tok + "'");
-  return value;
-}
-
-// A position or material coordinate: in metres, so nothing near the doubles' range (a vertex at
-// 1e308 would make every area and normal overflow, and be reported as a zero-area face).
-double parse_coordinate(const std::string& tok, const std::string& path, int line) {
-  constexpr double kFarthest = 1e5;
-  const double value = parse_number(tok, path, line);
-  if (std::abs(value) > kFarthest) throw InputError(path, line_place(line), "coordinate " + tok + " is beyond 100 km (coordinates are metres)");
-  return value;
-}
 
 // OBJ indices are 1-based; negative ones count back from the last element read so far.
 int32_t parse_index(const std::string& tok, std::size_t count, const std::string& what, const std::string& path, int line) {

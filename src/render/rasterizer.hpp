@@ -17,7 +17,12 @@ struct RenderMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<int32_t, 3>> faces;
   Vec3 colour = Vec3(0.7, 0.7, 0.7);  // base RGB in [0, 1]
+  std::vector<Vec3> face_colours;     // per face, instead of `colour` when not empty
+  bool wireframe = false;             // edges drawn dark over the shading, hidden where covered
 };
+
+// How far from a triangle's edge, in pixels, a wireframe's line reaches.
+inline constexpr double kWireHalfWidth = 0.6;
 
 // Per-pixel buffers in row-major order, `image.width` pixels a row.
 struct RenderedFrame {
@@ -29,6 +34,10 @@ struct RenderedFrame {
   // zero for the background.
   std::vector<Vec3> normal;
 };
+
+// The colour of a face with view factor v (Koh et al. 2014's coarsening factor): red at 1 (full resolution),
+// through green to blue at 0.01 (the default out-of-frame factor) and below, on a log scale.
+Vec3 view_factor_colour(double v);
 
 // The image of `meshes` seen by `camera`, at `scale` times the camera's image size.
 RenderedFrame render(const Camera& camera, const std::vector<RenderMesh>& meshes, double scale = 1.0);

@@ -237,6 +237,26 @@ TEST_F(CliTest, RenderDrawsEachFrameAndARunComparedWithItselfMatchesExactly) {
   EXPECT_EQ(rows.size(), 2u);  // frames 0 and 2
 }
 
+// Cloth coloured by its view factors (the frames' PLY files) with its edges drawn: the pictures
+// of every frame; a damaged PLY stops the command naming it and its line, nothing left written.
+TEST_F(CliTest, RenderColoursByViewFactorFromThePlyFiles) {
+  const std::string camera =
+      R"("camera": {"fov": 40, "width": 160, "height": 120, "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}]}, )";
+  const std::string path = scene("", camera);
+  ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "2", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
+  ASSERT_TRUE(fs::exists(dir_ / "out" / "frames" / "cloth_s.0002.ply"));
+  ASSERT_EQ(run({"render", path, out_dir(), "--colour", "view", "--wireframe", "--scale", "1"}), kExitOk) << err_.str();
+  for (int f = 0; f <= 2; ++f) EXPECT_TRUE(fs::exists(dir_ / "out" / "render" / ("frame_000" + std::to_string(f) + ".png"))) << f;
+  fs::remove_all(dir_ / "out" / "render");
+  std::ofstream(dir_ / "out" / "frames" / "cloth_s.0002.ply") << "ply\nformat ascii 1.0\nelement vertex x\n";
+  EXPECT_EQ(run({"render", path, out_dir(), "--colour", "view"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("cloth_s.0002.ply"), std::string::npos) << err_.str();
+  EXPECT_NE(err_.str().find("line 3"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "render"));
+  EXPECT_EQ(run({"render", path, out_dir(), "--colour", "purple"}), kExitBadInput);
+  EXPECT_NE(err_.str().find("--colour expects garment or view"), std::string::npos) << err_.str();
+}
+
 TEST_F(CliTest, RenderBadInputsExitTwoNamingTheProblem) {
   const std::string no_camera = scene();
   ASSERT_EQ(run({"run", no_camera, "--out", out_dir(), "--frames", "1", "--threads", "1"}), kExitOk) << err_.str();

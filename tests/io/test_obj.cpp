@@ -19,6 +19,7 @@
 #include "core/mesh.hpp"
 #include "core/mesh_build.hpp"
 #include "io/obj.hpp"
+#include "support/temp_file.hpp"
 #include "support/text.hpp"
 
 namespace vdc {
@@ -30,32 +31,7 @@ std::string data_path(const std::string& name) { return std::string(VDCLOTH_TEST
 
 using test::contains;
 
-// A file in the temp directory with a name no other test (or test process) uses; removed at the end.
-class TempFile {
- public:
-  explicit TempFile(const std::string& suffix = ".obj") {
-    static std::atomic<int> counter{0};
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "vdcloth_test_" + std::string(info ? info->name() : "x") + "_" +
-                       std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "_" +
-                       std::to_string(counter++) + suffix;
-    path_ = (fs::temp_directory_path() / name).string();
-  }
-  TempFile(const TempFile&) = delete;
-  TempFile& operator=(const TempFile&) = delete;
-  ~TempFile() {
-    std::error_code ec;
-    fs::remove(path_, ec);
-  }
-  const std::string& path() const { return path_; }
-  void write(const std::string& text) const {
-    std::ofstream out(path_, std::ios::binary);
-    out << text;
-  }
-
- private:
-  std::string path_;
-};
+using test::TempFile;
 
 bool same_bits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); }
 

@@ -128,6 +128,57 @@ TEST(Rasterizer, TrianglesBehindTheNearPlaneAreNotDrawnAndScaleSizesTheImage) {
   EXPECT_NEAR(pixels_of(half, 0), side * side, 2 * side + 2);
 }
 
+std::size_t pixel_at(const Camera& camera, const Vec3& x) {
+  const Vec2 p = camera.project(x);
+  return static_cast<std::size_t>(std::floor(p.y())) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(std::floor(p.x()));
+}
+
+// Per-face colours replace the mesh's: each triangle of the square in its own, at full
+// brightness where it faces the camera.
+TEST(Rasterizer, FaceColoursColourTheirOwnFaces) {
+  const Camera camera = test_camera();
+  RenderMesh m = square(0.5, 0, Vec3(1, 1, 1));
+  m.face_colours = {Vec3(1, 0, 0), Vec3(0, 0, 1)};  // (0, 1, 2) below the diagonal x = y, (0, 2, 3) above
+  const RenderedFrame f = render(camera, {m});
+  const std::size_t below = 3 * pixel_at(camera, Vec3(0.25, -0.1, 0)), above = 3 * pixel_at(camera, Vec3(-0.25, 0.1, 0));
+  EXPECT_EQ(f.image.rgb[below], 255);
+  EXPECT_EQ(f.image.rgb[below + 2], 0);
+  EXPECT_EQ(f.image.rgb[above], 0);
+  EXPECT_EQ(f.image.rgb[above + 2], 255);
+}
+
+// The wireframe darkens the pixels within kWireHalfWidth of an edge to 30%: on the diagonal
+// (pixel (160, 119), whose centre lies on it), not 16 pixels away from every edge; their number
+// is the band's area, the inner half of the outline plus both sides of the diagonal.
+TEST(Rasterizer, WireframeDarkensABandAlongTheEdges) {
+  const Camera camera = test_camera();
+  RenderMesh m = square(0.5, 0, Vec3(1, 1, 1));
+  const RenderedFrame plain = render(camera, {m});
+  m.wireframe = true;
+  const RenderedFrame wired = render(camera, {m});
+  const std::size_t diagonal = 3 * (119 * 320 + 160), inside = 3 * pixel_at(camera, Vec3(0.25, -0.1, 0));
+  EXPECT_EQ(plain.image.rgb[diagonal], 255);
+  EXPECT_NEAR(wired.image.rgb[diagonal], 0.3 * 255, 1);
+  EXPECT_EQ(wired.image.rgb[inside], 255);
+  int dark = 0;
+  for (std::size_t i = 0; i < wired.mesh.size(); ++i) dark += wired.mesh[i] == 0 && wired.image.rgb[3 * i] < 128;
+  const double side = camera.focal_pixels() / 5.0;
+  const double band = 4 * side * kWireHalfWidth + std::sqrt(2.0) * side * 2 * kWireHalfWidth;
+  EXPECT_NEAR(dark, band, 0.25 * band);
+  EXPECT_EQ(pixels_of(wired, 0), pixels_of(plain, 0));
+}
+
+// The view factor's colours: red at 1, green at 0.1, blue at 0.01 and below (also for 0 and NaN).
+TEST(Rasterizer, ViewFactorColoursRunFromRedThroughGreenToBlue) {
+  const Vec3 red(0.88, 0.28, 0.20), green(0.28, 0.72, 0.35), blue(0.20, 0.32, 0.85);
+  const struct {
+    double v;
+    Vec3 colour;
+  } cases[] = {{1.0, red}, {5.0, red}, {0.1, green}, {0.01, blue}, {0.0, blue}, {std::nan(""), blue},
+               {std::sqrt(0.1), Vec3(0.58, 0.50, 0.275)}};  // halfway from green to red on the log scale
+  for (const auto& c : cases) EXPECT_LT((view_factor_colour(c.v) - c.colour).norm(), 1e-12) << c.v;
+}
+
 // A sheet folded along x = 0: the left half faces the camera, the right half turns 60 degrees
 // away. Smooth shading leaves no step in brightness at the fold (flat shading would step from
 // full to 62%), and the face turned away is darker.
