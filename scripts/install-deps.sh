@@ -10,6 +10,7 @@ packages=(
   libsuitesparse-dev     # CHOLMOD sparse Cholesky
   libopenblas0-openmp    # fast BLAS for CHOLMOD's dense kernels
   nlohmann-json3-dev     # scene and material files
+  zlib1g-dev             # deflate for the PNG previews
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev       # bench/
   assimp-testmodels      # CMU motion capture BVH files for the importer's tests

@@ -1,5 +1,5 @@
-// PNG output of 8-bit RGB images (PNG specification, ISO/IEC 15948): the pixels go into zlib
-// "stored" blocks, uncompressed, so no compression library is needed.
+// PNG output of 8-bit RGB images (PNG specification, ISO/IEC 15948), rows filtered by their
+// difference from the row above and deflated by zlib.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -11,10 +11,6 @@ struct RgbImage {
   int width = 0, height = 0;
   std::vector<uint8_t> rgb;  // row by row from the top, 3 bytes a pixel
 };
-
-// CRC-32 of the PNG chunks (ISO 3309 polynomial, reflected) and zlib's Adler-32 (RFC 1950).
-uint32_t crc32(const uint8_t* data, std::size_t size, uint32_t crc = 0);
-uint32_t adler32(const uint8_t* data, std::size_t size);
 
 // The PNG file of `image` as bytes.
 std::vector<uint8_t> encode_png(const RgbImage& image);
