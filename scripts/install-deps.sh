@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev       # bench/
   assimp-testmodels      # CMU motion capture BVH files for the importer's tests
+  ffmpeg                 # `vdcloth render --video`: the frames as an H.264 MP4
 )
 if [ "${1:-}" = "fuzz" ]; then
   packages+=(

@@ -12,6 +12,7 @@
 
 #include "app/cli.hpp"
 #include "app/run_frames.hpp"
+#include "app/video_writer.hpp"
 #include "core/error.hpp"
 #include "io/png.hpp"
 #include "output/run_output.hpp"
@@ -26,7 +27,7 @@ namespace {
 
 const char* kRenderHelp =
     "usage: vdcloth render SCENE.json RUN_DIR [--compare OTHER_RUN_DIR] [--colour garment|view] [--wireframe]\n"
-    "                      [--every N] [--scale S] [--out DIR]\n"
+    "                      [--video] [--every N] [--scale S] [--out DIR]\n"
     "\n"
     "Draws the meshes of RUN_DIR/frames/ (written by `vdcloth run`) through the scene's camera at\n"
     "each frame's time: OUT/frame_NNNN.png. With --compare, the frames both runs have are drawn\n"
@@ -41,6 +42,8 @@ const char* kRenderHelp =
     "                  by its view factor, red at 1 (full resolution), green at 0.1, blue at 0.01\n"
     "                  (from the frames' PLY files; a run without them, fixed or adaptive, is red)\n"
     "  --wireframe     the cloth's mesh edges drawn over it (the remeshing made visible)\n"
+    "  --video         also OUT/render.mp4 (OUT/compare.mp4 with --compare): the pictures as an\n"
+    "                  H.264 video at the shot's speed, made by ffmpeg (Debian package ffmpeg)\n"
     "  --every N       every Nth frame that has meshes (default: 1, all)\n"
     "  --scale S       image size relative to the camera's, 0.05 to 4 (default: 0.5)\n"
     "  --out DIR       output directory (default: RUN_DIR/render, or RUN_DIR/compare with --compare)\n";
@@ -50,6 +53,7 @@ struct RenderArgs {
   int every = 1;
   double scale = 0.5;
   DrawStyle style;
+  bool video = false;
 };
 
 RenderArgs parse_render_args(const std::vector<std::string>& args) {
@@ -66,6 +70,7 @@ RenderArgs parse_render_args(const std::vector<std::string>& args) {
     else if (a == "--out") r.out = value();
     else if (a == "--scale") r.scale = parse_number(a, value(), 0.05, 4);
     else if (a == "--wireframe") r.style.wireframe = true;
+    else if (a == "--video") r.video = true;
     else if (a == "--colour" || a == "--color") {
       const std::string& c = value();
       if (c != "garment" && c != "view") throw UsageError(a + " expects garment or view, got '" + c + "'");
@@ -87,6 +92,12 @@ std::string numbered(const std::string& dir, const std::string& stem, int frame,
   return s.str();
 }
 
+// Adds a picture to the video, started at the first one (its size is the pictures').
+void add_to_video(std::optional<VideoWriter>& video, const std::string& path, const RgbImage& picture, double fps) {
+  if (!video) video.emplace(path, picture.width, picture.height, fps);
+  video->add(picture);
+}
+
 // Draws the frames `to_draw` of the run (beside those of the compared run) into r.out, listing
 // each picture in `pictures` as it is written, and the comparison's table in `csv`.
 void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, FrameFiles>& frames, const std::map<int, FrameFiles>& other,
@@ -95,10 +106,15 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
     csv.emplace(r.out + "/compare.csv");
     csv->stream() << "frame,time,cloth_pixels_a,cloth_pixels_b,cloth_iou,mean_abs_diff\n";
   }
-  int drawn = 0, index = 0;
+  std::vector<int> chosen;
+  for (std::size_t i = 0; i < to_draw.size(); i += static_cast<std::size_t>(r.every)) chosen.push_back(to_draw[i]);
+  // The video plays the shot at its speed: the drawn frames' mean spacing, in frame times.
+  const double spacing = chosen.size() > 1 ? double(chosen.back() - chosen.front()) / double(chosen.size() - 1) : 1.0;
+  std::optional<VideoWriter> video;
+  const std::string video_path = r.out + (r.compare.empty() ? "/render.mp4" : "/compare.mp4");
+  int drawn = 0;
   double iou_sum = 0, iou_min = 1, diff_sum = 0;
-  for (const int frame : to_draw) {
-    if (index++ % r.every != 0) continue;
+  for (const int frame : chosen) {
     const double time = frame * scene.frame_time;
     const Camera camera = scene.camera->at(time);
     const DrawnFrame a = draw_frame(camera, frames.at(frame), r.scale, r.style);
@@ -107,6 +123,7 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
       written = numbered(r.out, "frame", frame, ".png");
       pictures.push_back(written);
       if (!write_png(a.pixels.image, written)) throw OutputError(written, "cannot write");
+      if (r.video) add_to_video(video, video_path, a.pixels.image, 1.0 / (scene.frame_time * spacing));
     } else {
       const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale, r.style);
       const RenderComparison c = compare_renders(a.pixels, a.cloth, b.pixels, b.cloth);
@@ -117,10 +134,16 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
       diff_sum += c.mean_abs_diff;
       written = numbered(r.out, "compare", frame, ".png");
       pictures.push_back(written);
-      if (!write_png(side_by_side(a.pixels.image, b.pixels.image), written)) throw OutputError(written, "cannot write");
+      const RgbImage both = side_by_side(a.pixels.image, b.pixels.image);
+      if (!write_png(both, written)) throw OutputError(written, "cannot write");
+      if (r.video) add_to_video(video, video_path, both, 1.0 / (scene.frame_time * spacing));
     }
     ++drawn;
     out << "vdcloth render: frame " << frame << " -> " << written << "\n" << std::flush;
+  }
+  if (video) {
+    video->finish();
+    out << "vdcloth render: " << video_path << "\n";
   }
   out << "vdcloth render: " << drawn << " frame(s) in " << r.out;
   if (!r.compare.empty())
@@ -139,6 +162,7 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
       return kExitOk;
     }
   const RenderArgs r = parse_render_args(args);
+  if (r.video && !ffmpeg_available()) throw UsageError("--video needs ffmpeg (Debian package ffmpeg), which cannot be started");
   const Scene scene = load_scene(r.scene);
   if (!scene.camera) throw InputError(r.scene, "camera", "the scene has no camera to render through");
   const std::map<int, FrameFiles> frames = read_frame_files(r.run);

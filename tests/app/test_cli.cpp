@@ -257,6 +257,42 @@ TEST_F(CliTest, RenderColoursByViewFactorFromThePlyFiles) {
   EXPECT_NE(err_.str().find("--colour expects garment or view"), std::string::npos) << err_.str();
 }
 
+// What ffprobe (installed with ffmpeg) says of a video's first stream: "codec,width,height,
+// frame rate,frames read".
+std::string probe_video(const fs::path& video) {
+  const std::string command = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                              "stream=codec_name,width,height,r_frame_rate,nb_read_frames -of csv=p=0 '" + video.string() + "'";
+  std::string text;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (fgets(buffer, sizeof buffer, pipe) != nullptr) text += buffer;
+    pclose(pipe);
+  }
+  return text;
+}
+
+// The pictures as an MP4 at the shot's speed (frames 0 to 4 drawn every second one: 0, 2, 4 at
+// 25 / 2 frames a second), side by side with --compare; without ffmpeg on the PATH, exit 2 and
+// nothing written.
+TEST_F(CliTest, RenderVideoHoldsEveryPictureAtTheShotsSpeed) {
+  const std::string camera =
+      R"("camera": {"fov": 40, "width": 160, "height": 120, "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}]}, )";
+  const std::string path = scene("", camera);
+  ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "4", "--threads", "1"}), kExitOk) << err_.str();
+  ASSERT_EQ(run({"render", path, out_dir(), "--video", "--every", "2", "--scale", "1"}), kExitOk) << err_.str();
+  EXPECT_EQ(probe_video(dir_ / "out" / "render" / "render.mp4"), "h264,160,120,25/2,3\n");
+  ASSERT_EQ(run({"render", path, out_dir(), "--compare", out_dir(), "--video", "--scale", "0.5"}), kExitOk) << err_.str();
+  EXPECT_EQ(probe_video(dir_ / "out" / "compare" / "compare.mp4"), "h264,248,60,25/1,5\n");  // three pictures 80 wide, two gaps of 4
+
+  const std::string path_before = std::getenv("PATH");
+  setenv("PATH", (dir_ / "no-programs-here").c_str(), 1);
+  const int status = run({"render", path, out_dir(), "--video", "--out", (dir_ / "pictures").string()});
+  setenv("PATH", path_before.c_str(), 1);
+  EXPECT_EQ(status, kExitBadInput);
+  EXPECT_NE(err_.str().find("--video needs ffmpeg"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "pictures"));
+}
+
 TEST_F(CliTest, RenderBadInputsExitTwoNamingTheProblem) {
   const std::string no_camera = scene();
   ASSERT_EQ(run({"run", no_camera, "--out", out_dir(), "--frames", "1", "--threads", "1"}), kExitOk) << err_.str();
