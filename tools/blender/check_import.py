@@ -1,0 +1,75 @@
+# Checks the add-on against a run, in Blender without a window:
+#   blender -b --factory-startup --python tools/blender/check_import.py -- RUN_DIR
+# At every written frame each imported object must hold the vertex and face counts of its OBJ
+# (counted here from the file's lines), each cloth mesh with a PLY its `view` face attribute
+# equal to the PLY's values, and the camera the position and viewing direction of camera.json,
+# turned from y-up to z-up. Exit status 1 on any difference.
+import json
+import os
+import sys
+
+import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import vdcloth_import  # noqa: E402
+
+run_dir = sys.argv[sys.argv.index("--") + 1]
+failures = []
+
+
+def check(ok, what):
+    if not ok:
+        failures.append(what)
+
+
+def counts(path):
+    v = f = 0
+    with open(path) as file:
+        for line in file:
+            v += line.startswith("v ")
+            f += line.startswith("f ")
+    return v, f
+
+
+made = vdcloth_import.import_run(run_dir)
+scene = bpy.context.scene
+files = vdcloth_import.frame_files(run_dir)
+checked = 0
+for (kind, name), by_frame in files.items():
+    obj = bpy.data.objects[kind + "_" + name]
+    for frame, path in sorted(by_frame.items()):
+        scene.frame_set(frame)
+        v, f = counts(path)
+        check((len(obj.data.vertices), len(obj.data.polygons)) == (v, f),
+              "%s frame %d: %d vertices, %d faces, the OBJ %d, %d" % (obj.name, frame, len(obj.data.vertices), len(obj.data.polygons), v, f))
+        ply = path[:-4] + ".ply"
+        if kind == "cloth" and os.path.exists(ply):
+            values = vdcloth_import.read_ply_values(ply)
+            attribute = obj.data.attributes.get("view")
+            check(attribute is not None and attribute.domain == "FACE", "%s frame %d: no view face attribute" % (obj.name, frame))
+            if attribute is not None:
+                got = [a.value for a in attribute.data]
+                check(len(got) == len(values) and all(abs(a - b) <= 1e-6 for a, b in zip(got, values)),
+                      "%s frame %d: view attribute differs from the PLY" % (obj.name, frame))
+        checked += 1
+
+camera_path = os.path.join(run_dir, "camera.json")
+cameras = 0
+if os.path.exists(camera_path):
+    with open(camera_path) as file:
+        frames = json.load(file)["frames"]
+    camera = scene.camera
+    for frame in frames:
+        scene.frame_set(frame["frame"])
+        m = camera.matrix_world
+        position = vdcloth_import.to_blender(frame["position"])
+        forward = vdcloth_import.to_blender(frame["forward"]).normalized()
+        looks = -m.to_3x3().col[2]
+        check((m.translation - position).length < 1e-4, "camera frame %d at %s, expected %s" % (frame["frame"], tuple(m.translation), tuple(position)))
+        check((looks.normalized() - forward).length < 1e-4, "camera frame %d looks along %s, expected %s" % (frame["frame"], tuple(looks), tuple(forward)))
+        cameras += 1
+
+print("check_import: %d object frames and %d camera frames checked, %d failure(s)" % (checked, cameras, len(failures)))
+for f in failures[:20]:
+    print("check_import: " + f)
+sys.exit(1 if failures or checked == 0 else 0)

@@ -1,0 +1,210 @@
+# Blender add-on: loads a vdcloth run (RUN_DIR/frames, RUN_DIR/camera.json) into the scene.
+# Each garment is one object whose mesh is swapped at every frame (remeshing changes its
+# topology from frame to frame), with the view factor as a float face attribute `view` where the
+# run wrote it; each obstacle one object the same way; the shot camera keyed at every frame with
+# constant interpolation, so cuts stay cuts. vdcloth is y-up, Blender z-up: (x, y, z) -> (x, -z, y).
+#
+# Install: Edit > Preferences > Add-ons > Install..., pick this file, enable "Import: vdcloth run";
+# then File > Import > vdcloth run. From a script or `blender -b`:
+#   import vdcloth_import; vdcloth_import.import_run("/path/to/run")
+import glob
+import json
+import math
+import os
+import re
+
+import bpy
+from bpy_extras.io_utils import ImportHelper
+from mathutils import Matrix, Vector
+
+bl_info = {
+    "name": "vdcloth run",
+    "description": "Cloth, bodies, view factors and the shot camera of a vdcloth run",
+    "blender": (3, 4, 0),
+    "category": "Import-Export",
+    "location": "File > Import > vdcloth run",
+}
+
+FRAME_FILE = re.compile(r"^(cloth|obstacle)_(.+)\.(\d{4,})\.obj$")
+
+
+def to_blender(p):
+    """A vdcloth (y-up) point or direction in Blender's z-up world."""
+    return Vector((p[0], -p[2], p[1]))
+
+
+def read_obj(path):
+    """Positions and faces (0-based, polygons kept) of an OBJ as vdcloth writes it."""
+    verts, faces = [], []
+    with open(path) as f:
+        for line in f:
+            t = line.split()
+            if not t:
+                continue
+            if t[0] == "v":
+                verts.append(to_blender([float(c) for c in t[1:4]]))
+            elif t[0] == "f":
+                faces.append([int(c.split("/")[0]) - 1 for c in t[1:]])
+    return verts, faces
+
+
+def read_ply_values(path):
+    """The per-face values of the view factors' PLY, in face order."""
+    with open(path) as f:
+        lines = f.read().split("\n")
+    vertices = faces = 0
+    at = 0
+    while lines[at] != "end_header":
+        t = lines[at].split()
+        if t[:2] == ["element", "vertex"]:
+            vertices = int(t[2])
+        elif t[:2] == ["element", "face"]:
+            faces = int(t[2])
+        at += 1
+    start = at + 1 + vertices
+    return [float(lines[start + i].split()[4]) for i in range(faces)]
+
+
+def frame_files(run_dir):
+    """{(kind, name): {frame: path}} of RUN_DIR/frames."""
+    found = {}
+    for path in glob.glob(os.path.join(run_dir, "frames", "*.obj")):
+        m = FRAME_FILE.match(os.path.basename(path))
+        if m:
+            found.setdefault((m.group(1), m.group(2)), {})[int(m.group(3))] = path
+    if not found:
+        raise ValueError(run_dir + ": no frame meshes in frames/ (was the run made with --mesh-every 0?)")
+    return found
+
+
+def build_mesh(name, path):
+    verts, faces = read_obj(path)
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    ply = path[:-4] + ".ply"
+    if os.path.exists(ply):
+        values = read_ply_values(ply)
+        if len(values) == len(mesh.polygons):
+            attribute = mesh.attributes.new(name="view", type="FLOAT", domain="FACE")
+            attribute.data.foreach_set("value", values)
+    mesh.update()
+    mesh.use_fake_user = True  # kept while another frame's mesh is shown
+    return mesh
+
+
+def camera_matrix(frame):
+    """The camera's world matrix in Blender: it looks along its -Z with +Y up."""
+    forward = to_blender(frame["forward"]).normalized()
+    up = to_blender(frame["up"]).normalized()
+    right = forward.cross(up).normalized()
+    rotation = Matrix((right, up, -forward)).transposed()
+    m = rotation.to_4x4()
+    m.translation = to_blender(frame["position"])
+    return m
+
+
+def import_camera(run_dir, scene, collection):
+    path = os.path.join(run_dir, "camera.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        cam = json.load(f)
+    data = bpy.data.cameras.new("shot")
+    data.sensor_fit = "VERTICAL"
+    data.angle_y = math.radians(cam["fov_y_degrees"])
+    data.clip_start, data.clip_end = cam["near"], cam["far"]
+    obj = bpy.data.objects.new("shot", data)
+    collection.objects.link(obj)
+    obj.rotation_mode = "XYZ"
+    for frame in cam["frames"]:
+        obj.matrix_world = camera_matrix(frame)
+        obj.keyframe_insert("location", frame=frame["frame"])
+        obj.keyframe_insert("rotation_euler", frame=frame["frame"])
+        if frame["cut"]:
+            obj["cuts"] = list(obj.get("cuts", [])) + [frame["frame"]]
+    for curve in obj.animation_data.action.fcurves:
+        for key in curve.keyframe_points:
+            key.interpolation = "CONSTANT"
+    scene.camera = obj
+    scene.render.resolution_x, scene.render.resolution_y = cam["width"], cam["height"]
+    scene.render.fps = max(1, round(1.0 / cam["frame_time"]))
+    return obj
+
+
+@bpy.app.handlers.persistent
+def show_frame(scene, *args):
+    """Shows each imported object's mesh of the last written frame at or before the current one."""
+    for obj in scene.objects:
+        frames = obj.get("vdcloth_frames")
+        if not frames:
+            continue
+        current = scene.frame_current
+        chosen = frames[0]
+        for f in frames:
+            if f <= current:
+                chosen = f
+        mesh = bpy.data.meshes.get("%s.%04d" % (obj["vdcloth_name"], chosen))
+        if mesh is not None and obj.data != mesh:
+            obj.data = mesh
+
+
+def import_run(run_dir, every=1, context=None):
+    """Loads the run into the current scene; returns the objects made."""
+    context = context or bpy.context
+    scene = context.scene
+    collection = bpy.data.collections.new(os.path.basename(os.path.normpath(run_dir)) or "vdcloth")
+    scene.collection.children.link(collection)
+    made = []
+    all_frames = set()
+    for (kind, name), files in sorted(frame_files(run_dir).items()):
+        frames = sorted(files)[::every]
+        label = kind + "_" + name
+        for f in frames:
+            build_mesh("%s.%04d" % (label, f), files[f])
+        obj = bpy.data.objects.new(label, bpy.data.meshes["%s.%04d" % (label, frames[0])])
+        obj["vdcloth_name"] = label
+        obj["vdcloth_frames"] = frames
+        collection.objects.link(obj)
+        made.append(obj)
+        all_frames.update(frames)
+    camera = import_camera(run_dir, scene, collection)
+    if camera is not None:
+        made.append(camera)
+    scene.frame_start, scene.frame_end = min(all_frames), max(all_frames)
+    if show_frame not in bpy.app.handlers.frame_change_pre:
+        bpy.app.handlers.frame_change_pre.append(show_frame)
+    scene.frame_set(scene.frame_start)
+    return made
+
+
+class ImportVdclothRun(bpy.types.Operator, ImportHelper):
+    """Load a vdcloth run directory (its frames/ and camera.json)"""
+
+    bl_idname = "import_scene.vdcloth_run"
+    bl_label = "Import vdcloth run"
+    filename_ext = ""
+    use_filter_folder = True
+    every: bpy.props.IntProperty(name="Every Nth frame", default=1, min=1)
+
+    def execute(self, context):
+        run_dir = self.filepath if os.path.isdir(self.filepath) else os.path.dirname(self.filepath)
+        try:
+            import_run(run_dir, self.every, context)
+        except (OSError, ValueError) as e:
+            self.report({"ERROR"}, str(e))
+            return {"CANCELLED"}
+        return {"FINISHED"}
+
+
+def menu(self, context):
+    self.layout.operator(ImportVdclothRun.bl_idname, text="vdcloth run")
+
+
+def register():
+    bpy.utils.register_class(ImportVdclothRun)
+    bpy.types.TOPBAR_MT_file_import.append(menu)
+
+
+def unregister():
+    bpy.types.TOPBAR_MT_file_import.remove(menu)
+    bpy.utils.unregister_class(ImportVdclothRun)
