@@ -89,10 +89,11 @@ std::optional<int> find_joint(const Skeleton& skeleton, const std::string& wante
 void rename_joints(Skeleton& skeleton, const std::map<std::string, std::string>& names) {
   // All found before any is renamed, so that {"a": "b", "b": "c"} swaps nothing into a chain.
   std::vector<std::pair<std::size_t, std::string>> renames;
-  for (const auto& [from, to] : names) {
+  for (const auto& rename : names) {  // not a structured binding: clang 14 (make fuzz) cannot capture one
+    const std::string& from = rename.first;
     const auto it = std::find_if(skeleton.joints.begin(), skeleton.joints.end(), [&](const Joint& j) { return j.name == from; });
     if (it == skeleton.joints.end()) throw std::invalid_argument(from);
-    renames.emplace_back(static_cast<std::size_t>(it - skeleton.joints.begin()), to);
+    renames.emplace_back(static_cast<std::size_t>(it - skeleton.joints.begin()), rename.second);
   }
   for (auto& [index, to] : renames) skeleton.joints[index].name = std::move(to);
 }
