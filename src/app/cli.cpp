@@ -372,7 +372,8 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
       << std::fixed << std::setprecision(3) << this_segment / std::max(done - first, 1) << " s/frame); results in " << dir << std::endl;
   if (args.mesh_every > 0 && sim.parts().front()->scene().camera)
     out << "vdcloth: to look at it: vdcloth render " << args.scene << " " << dir << " draws it through the shot camera into "
-        << dir << "/render/; " << dir << "/frames/ holds the OBJ and PLY meshes, " << dir << "/camera.chan the camera\n";
+        << dir << "/render/ (add --video for an MP4, --colour view --wireframe for the mesh); " << dir
+        << "/frames/ holds the OBJ and PLY meshes, " << dir << "/camera.chan the camera\n";
   return kExitOk;
 }
 
