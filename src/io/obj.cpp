@@ -1,6 +1,10 @@
 #include "io/obj.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <limits>
+#include <map>
+#include <tuple>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -94,8 +98,53 @@ Mesh read_obj(const std::string& path, bool require_uv) {
   }
 }
 
+std::vector<Vec2> piece_offsets(const MeshSource& source) {
+  const std::size_t n = source.uvs.size();
+  std::vector<std::size_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  auto root = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const auto& face : source.faces)
+    for (int k = 1; k < 3; ++k) parent[root(static_cast<std::size_t>(face[static_cast<std::size_t>(k)].uv))] = root(static_cast<std::size_t>(face[0].uv));
+  struct Piece {
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -Vec2::Constant(std::numeric_limits<double>::infinity());
+    Vec2 offset = Vec2::Zero();
+  };
+  std::map<std::size_t, Piece> pieces;
+  for (std::size_t i = 0; i < n; ++i) {
+    Piece& piece = pieces[root(i)];
+    piece.lo = piece.lo.cwiseMin(source.uvs[i]);
+    piece.hi = piece.hi.cwiseMax(source.uvs[i]);
+  }
+  std::vector<Piece*> order;
+  for (auto& [r, piece] : pieces) order.push_back(&piece);
+  bool overlap = false;
+  for (std::size_t a = 0; a < order.size(); ++a)
+    for (std::size_t b = a + 1; b < order.size(); ++b)
+      overlap = overlap || ((order[a]->lo.array() < order[b]->hi.array()).all() && (order[b]->lo.array() < order[a]->hi.array()).all());
+  std::vector<Vec2> offsets(n, Vec2::Zero());
+  if (!overlap) return offsets;
+  std::sort(order.begin(), order.end(), [](const Piece* a, const Piece* b) {
+    return std::tie(a->lo.x(), a->lo.y(), a->hi.x(), a->hi.y()) < std::tie(b->lo.x(), b->lo.y(), b->hi.x(), b->hi.y());
+  });
+  constexpr double kGap = 0.02;  // m
+  double cursor = 0;
+  for (Piece* piece : order) {
+    piece->offset = Vec2(cursor - piece->lo.x(), -piece->lo.y());
+    cursor += piece->hi.x() - piece->lo.x() + kGap;
+  }
+  for (std::size_t i = 0; i < n; ++i) offsets[i] = pieces[root(i)].offset;
+  return offsets;
+}
+
 bool write_obj(const Mesh& mesh, const std::string& path, const ObjWriting& how) {
   MeshSource src = mesh_source(mesh);
+  if (how.material && how.separate_pieces) {
+    const std::vector<Vec2> offsets = piece_offsets(src);
+    for (std::size_t i = 0; i < src.uvs.size(); ++i) src.uvs[i] += offsets[i];
+  }
   TextFile f(path);
   if (!f.ok()) return false;
   auto coordinate = [&](double value) -> TextFile& { return how.decimals < 0 ? f.number(value) : f.fixed(value, how.decimals); };

@@ -2,6 +2,7 @@
 // A position used with several `vt` is a seam.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "core/mesh.hpp"
 #include "core/mesh_build.hpp"
@@ -22,7 +23,17 @@ Mesh read_obj(const std::string& path, bool require_uv = true);
 struct ObjWriting {
   bool material = true;
   int decimals = -1;  // -1: exact
+  // Pattern pieces (the parts of material space that faces connect) whose bounding boxes
+  // overlap are written side by side instead, each moved as a whole (its shape, in metres,
+  // unchanged): a texture can then be painted on `vt`. Off: `vt` is material space as it is.
+  bool separate_pieces = false;
 };
+
+// Per material-space vert of `source`, how far separate_pieces moves it: zero everywhere when
+// no two pieces' bounding boxes overlap; otherwise each piece in a row along u, ordered by its
+// bounding box, 2 cm apart, its lowest v at 0. Pieces keep their place from frame to frame, as
+// remeshing moves no piece's outline.
+std::vector<Vec2> piece_offsets(const MeshSource& source);
 
 // Writes v, vt and f v/vt (v and f v without material) so that read_obj gives back the same mesh,
 // to the rounding asked for. Returns false on I/O failure.

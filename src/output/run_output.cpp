@@ -142,7 +142,7 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
     for (std::size_t g = 0; g < scene.garments.size(); ++g) {
       const std::string& name = scene.garments[g].name;
       const Mesh& mesh = part->garment_mesh(g);
-      if (!write_obj(mesh, frame_file(dir_, "cloth", name, frame), ObjWriting{true, kFrameDecimals})) throw OutputError(frame_file(dir_, "cloth", name, frame), "cannot write");
+      if (!write_obj(mesh, frame_file(dir_, "cloth", name, frame), ObjWriting{true, kFrameDecimals, true})) throw OutputError(frame_file(dir_, "cloth", name, frame), "cannot write");
       // View mode: each garment's faces with their view factors, beside the OBJ.
       if (mesh.face_attrs().has(kViewFactorAttr) &&
           !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), "view", kViewFactorAttr, kFrameDecimals))

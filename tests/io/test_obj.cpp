@@ -210,6 +210,47 @@ TEST(ObjRoundTrip, WithoutMaterialHasNoTextureCoordinates) {
     for (int k = 0; k < 3; ++k) EXPECT_EQ(back.faces[i][k].node, src.faces[i][k].node) << i;
 }
 
+// Two square pieces whose material squares overlap ([0, 1]^2 and [0.5, 1.5]^2, as a dress's
+// bodice lies within its skirt's box): separated in a row, the first kept where it is, the
+// second moved to start 2 cm after it with its lowest v at 0, i.e. by (1.02 - 0.5, -0.5).
+MeshSource two_overlapping_pieces() {
+  MeshSource s;
+  for (int piece = 0; piece < 2; ++piece) {
+    const double at = 0.5 * piece;
+    for (int k = 0; k < 4; ++k) {
+      const Vec2 corner(k == 1 || k == 2 ? 1 : 0, k >= 2 ? 1 : 0);
+      s.positions.emplace_back(corner.x() + 3 * piece, corner.y(), 0);
+      s.uvs.push_back(corner + Vec2(at, at));
+    }
+    const int32_t b = 4 * piece;
+    s.faces.push_back({Corner{b, b}, Corner{b + 1, b + 1}, Corner{b + 2, b + 2}});
+    s.faces.push_back({Corner{b, b}, Corner{b + 2, b + 2}, Corner{b + 3, b + 3}});
+  }
+  return s;
+}
+
+TEST(ObjRoundTrip, OverlappingPiecesAreWrittenSideBySideWithTheirShapes) {
+  const MeshSource source = two_overlapping_pieces();
+  const std::vector<Vec2> offsets = piece_offsets(source);
+  ASSERT_EQ(offsets.size(), 8u);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(offsets[static_cast<std::size_t>(i)], Vec2(0, 0)) << i;
+  for (int i = 4; i < 8; ++i) EXPECT_LT((offsets[static_cast<std::size_t>(i)] - Vec2(0.52, -0.5)).norm(), 1e-12) << i;
+  MeshSource apart = source;
+  for (int i = 4; i < 8; ++i) apart.uvs[static_cast<std::size_t>(i)] += Vec2(2, 0);
+  for (const Vec2& o : piece_offsets(apart)) EXPECT_EQ(o, Vec2(0, 0)) << "pieces apart stay where they are";
+
+  Mesh m = build_mesh(source);
+  TempFile tmp;
+  ASSERT_TRUE(write_obj(m, tmp.path(), ObjWriting{true, -1, true}));
+  Mesh back = read_obj(tmp.path());
+  ASSERT_EQ(back.num_verts(), m.num_verts());
+  for (FaceId f : m.faces()) EXPECT_NEAR(back.material_area(f), m.material_area(f), 1e-12) << f.idx;
+  for (VertId v : m.verts()) EXPECT_EQ(back.x(m.vert_node(v)), m.x(m.vert_node(v)));
+  ASSERT_TRUE(write_obj(m, tmp.path(), ObjWriting{true, -1, false}));
+  back = read_obj(tmp.path());
+  for (VertId v : m.verts()) EXPECT_EQ(back.u(v), m.u(v)) << "without separate_pieces, vt is material space as it is";
+}
+
 TEST(ObjRoundTrip, WriteToUnwritablePathFails) {
   Mesh m = build_mesh(make_grid(1, 1, 1, 1));
   TempFile dir_that_is_missing("");
