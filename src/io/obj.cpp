@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <charconv>
-#include <limits>
-#include <map>
-#include <tuple>
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "core/error.hpp"
@@ -126,10 +126,19 @@ std::vector<Vec2> piece_offsets(const MeshSource& source) {
       overlap = overlap || ((order[a]->lo.array() < order[b]->hi.array()).all() && (order[b]->lo.array() < order[a]->hi.array()).all());
   std::vector<Vec2> offsets(n, Vec2::Zero());
   if (!overlap) return offsets;
-  std::sort(order.begin(), order.end(), [](const Piece* a, const Piece* b) {
+  // The layout reads the boxes rounded out to a 10 cm grid: remeshing moves a piece's box by a
+  // few millimetres at most (a collapse on a curved outline), which leaves the rounded box, and
+  // so every offset, as it was unless an edge of the box crosses a grid line.
+  constexpr double kGrid = 0.1, kGap = 0.02;  // m
+  for (Piece* piece : order) {
+    for (int k = 0; k < 2; ++k) {
+      piece->lo[k] = std::floor(piece->lo[k] / kGrid + 1e-9) * kGrid;
+      piece->hi[k] = std::ceil(piece->hi[k] / kGrid - 1e-9) * kGrid;
+    }
+  }
+  std::stable_sort(order.begin(), order.end(), [](const Piece* a, const Piece* b) {
     return std::tie(a->lo.x(), a->lo.y(), a->hi.x(), a->hi.y()) < std::tie(b->lo.x(), b->lo.y(), b->hi.x(), b->hi.y());
   });
-  constexpr double kGap = 0.02;  // m
   double cursor = 0;
   for (Piece* piece : order) {
     piece->offset = Vec2(cursor - piece->lo.x(), -piece->lo.y());

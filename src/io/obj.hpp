@@ -30,9 +30,9 @@ struct ObjWriting {
 };
 
 // Per material-space vert of `source`, how far separate_pieces moves it: zero everywhere when
-// no two pieces' bounding boxes overlap; otherwise each piece in a row along u, ordered by its
-// bounding box, 2 cm apart, its lowest v at 0. Pieces keep their place from frame to frame, as
-// remeshing moves no piece's outline.
+// no two pieces' bounding boxes overlap; otherwise the pieces in a row along u, ordered by their
+// boxes rounded out to 10 cm, each box so rounded starting 2 cm after the last, at v = 0. The
+// rounding keeps the offsets from frame to frame though remeshing moves a box by millimetres.
 std::vector<Vec2> piece_offsets(const MeshSource& source);
 
 // Writes v, vt and f v/vt (v and f v without material) so that read_obj gives back the same mesh,
