@@ -1,7 +1,8 @@
 # Checks the add-on against a run, in Blender without a window:
 #   blender -b --factory-startup --python tools/blender/check_import.py -- RUN_DIR
 # At every written frame each imported object must hold the vertex and face counts of its OBJ
-# (counted here from the file's lines), each cloth mesh with a PLY its `view` face attribute
+# (counted here from the file's lines), each cloth mesh its `pattern` UV layer and, with a PLY,
+# its `view` face attribute
 # equal to the PLY's values, and the camera the position and viewing direction of camera.json,
 # turned from y-up to z-up. Exit status 1 on any difference.
 import json
@@ -31,6 +32,18 @@ def counts(path):
     return v, f
 
 
+def last_face_uvs(path):
+    """The material coordinates of the last face's corners, read from the file's lines."""
+    vt, last = [], None
+    with open(path) as file:
+        for line in file:
+            if line.startswith("vt "):
+                vt.append(tuple(float(c) for c in line.split()[1:3]))
+            elif line.startswith("f "):
+                last = line
+    return [vt[int(c.split("/")[1]) - 1] for c in last.split()[1:]]
+
+
 made = vdcloth_import.import_run(run_dir)
 scene = bpy.context.scene
 files = vdcloth_import.frame_files(run_dir)
@@ -42,6 +55,15 @@ for (kind, name), by_frame in files.items():
         v, f = counts(path)
         check((len(obj.data.vertices), len(obj.data.polygons)) == (v, f),
               "%s frame %d: %d vertices, %d faces, the OBJ %d, %d" % (obj.name, frame, len(obj.data.vertices), len(obj.data.polygons), v, f))
+        if kind == "cloth":
+            layer = obj.data.uv_layers.get("pattern")
+            check(layer is not None and len(layer.data) == sum(len(p.vertices) for p in obj.data.polygons),
+                  "%s frame %d: no pattern UV layer" % (obj.name, frame))
+            if layer is not None:
+                last = obj.data.polygons[-1]
+                got = [tuple(layer.data[i].uv) for i in last.loop_indices]
+                check(all(abs(a[k] - b[k]) < 1e-5 for a, b in zip(got, last_face_uvs(path)) for k in range(2)),
+                      "%s frame %d: pattern UVs %s, the OBJ's %s" % (obj.name, frame, got, last_face_uvs(path)))
         ply = path[:-4] + ".ply"
         if kind == "cloth" and os.path.exists(ply):
             values = vdcloth_import.read_ply_values(ply)

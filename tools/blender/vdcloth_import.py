@@ -1,7 +1,7 @@
 # Blender add-on: loads a vdcloth run (RUN_DIR/frames, RUN_DIR/camera.json) into the scene.
 # Each garment is one object whose mesh is swapped at every frame (remeshing changes its
-# topology from frame to frame), with the view factor as a float face attribute `view` where the
-# run wrote it; each obstacle one object the same way; the shot camera keyed at every frame with
+# topology from frame to frame), with its pattern (material space, metres) as the UV layer
+# `pattern` and the view factor as a float face attribute `view` where the run wrote it; each obstacle one object the same way; the shot camera keyed at every frame with
 # constant interpolation, so cuts stay cuts. vdcloth is y-up, Blender z-up: (x, y, z) -> (x, -z, y).
 #
 # Install: Edit > Preferences > Add-ons > Install..., pick this file, enable "Import: vdcloth run";
@@ -34,8 +34,9 @@ def to_blender(p):
 
 
 def read_obj(path):
-    """Positions and faces (0-based, polygons kept) of an OBJ as vdcloth writes it."""
-    verts, faces = [], []
+    """Positions, faces (0-based, polygons kept), material coordinates and the faces' indices
+    into them (empty for an obstacle) of an OBJ as vdcloth writes it."""
+    verts, faces, uvs, face_uvs = [], [], [], []
     with open(path) as f:
         for line in f:
             t = line.split()
@@ -43,9 +44,14 @@ def read_obj(path):
                 continue
             if t[0] == "v":
                 verts.append(to_blender([float(c) for c in t[1:4]]))
+            elif t[0] == "vt":
+                uvs.append((float(t[1]), float(t[2])))
             elif t[0] == "f":
-                faces.append([int(c.split("/")[0]) - 1 for c in t[1:]])
-    return verts, faces
+                corners = [c.split("/") for c in t[1:]]
+                faces.append([int(c[0]) - 1 for c in corners])
+                if all(len(c) > 1 and c[1] for c in corners):
+                    face_uvs.append([int(c[1]) - 1 for c in corners])
+    return verts, faces, uvs, face_uvs if len(face_uvs) == len(faces) else []
 
 
 def read_ply_values(path):
@@ -78,9 +84,13 @@ def frame_files(run_dir):
 
 
 def build_mesh(name, path):
-    verts, faces = read_obj(path)
+    verts, faces, uvs, face_uvs = read_obj(path)
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata(verts, [], faces)
+    if face_uvs:  # the garment's pattern pieces, in metres, laid side by side by the run
+        layer = mesh.uv_layers.new(name="pattern")
+        corners = [uvs[i] for face in face_uvs for i in face]
+        layer.data.foreach_set("uv", [c for uv in corners for c in uv])
     ply = path[:-4] + ".ply"
     if os.path.exists(ply):
         values = read_ply_values(ply)
