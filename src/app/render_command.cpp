@@ -110,6 +110,7 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
   for (std::size_t i = 0; i < to_draw.size(); i += static_cast<std::size_t>(r.every)) chosen.push_back(to_draw[i]);
   // The video plays the shot at its speed: the drawn frames' mean spacing, in frame times.
   const double spacing = chosen.size() > 1 ? double(chosen.back() - chosen.front()) / double(chosen.size() - 1) : 1.0;
+  const double fps = 1.0 / (scene.frame_time * spacing);
   std::optional<VideoWriter> video;
   const std::string video_path = r.out + (r.compare.empty() ? "/render.mp4" : "/compare.mp4");
   int drawn = 0;
@@ -123,7 +124,7 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
       written = numbered(r.out, "frame", frame, ".png");
       pictures.push_back(written);
       if (!write_png(a.pixels.image, written)) throw OutputError(written, "cannot write");
-      if (r.video) add_to_video(video, video_path, a.pixels.image, 1.0 / (scene.frame_time * spacing));
+      if (r.video) add_to_video(video, video_path, a.pixels.image, fps);
     } else {
       const DrawnFrame b = draw_frame(camera, other.at(frame), r.scale, r.style);
       const RenderComparison c = compare_renders(a.pixels, a.cloth, b.pixels, b.cloth);
@@ -136,7 +137,7 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
       pictures.push_back(written);
       const RgbImage both = side_by_side(a.pixels.image, b.pixels.image);
       if (!write_png(both, written)) throw OutputError(written, "cannot write");
-      if (r.video) add_to_video(video, video_path, both, 1.0 / (scene.frame_time * spacing));
+      if (r.video) add_to_video(video, video_path, both, fps);
     }
     ++drawn;
     out << "vdcloth render: frame " << frame << " -> " << written << "\n" << std::flush;

@@ -156,20 +156,11 @@ bool write_obj(const Mesh& mesh, const std::string& path, const ObjWriting& how)
   }
   TextFile f(path);
   if (!f.ok()) return false;
-  auto coordinate = [&](double value) -> TextFile& { return how.decimals < 0 ? f.number(value) : f.fixed(value, how.decimals); };
   f.text(how.material ? "# vdcloth mesh: v world position, vt material position (m)\n" : "# vdcloth mesh: v world position (m)\n");
-  for (const Vec3& p : src.positions) {
-    f.text("v ");
-    coordinate(p.x()).text(" ");
-    coordinate(p.y()).text(" ");
-    coordinate(p.z()).text("\n");
-  }
+  for (const Vec3& p : src.positions)
+    f.text("v ").fixed(p.x(), how.decimals).text(" ").fixed(p.y(), how.decimals).text(" ").fixed(p.z(), how.decimals).text("\n");
   if (how.material)
-    for (const Vec2& u : src.uvs) {
-      f.text("vt ");
-      coordinate(u.x()).text(" ");
-      coordinate(u.y()).text("\n");
-    }
+    for (const Vec2& u : src.uvs) f.text("vt ").fixed(u.x(), how.decimals).text(" ").fixed(u.y(), how.decimals).text("\n");
   for (const auto& face : src.faces) {
     f.text("f");
     for (const auto& corner : face) {

@@ -22,11 +22,9 @@ bool write_ply_with_face_values(const Mesh& mesh, const std::string& path, const
   for (NodeId v : mesh.nodes()) index[static_cast<std::size_t>(v.idx)] = n++;
   out.text("ply\nformat ascii 1.0\nelement vertex ").integer(n).text("\nproperty double x\nproperty double y\nproperty double z\n");
   out.text("element face ").integer(mesh.num_faces()).text("\nproperty list uchar int vertex_indices\nproperty float ").text(name).text("\nend_header\n");
-  auto coordinate = [&](double c) -> TextFile& { return decimals < 0 ? out.number(c) : out.fixed(c, decimals); };
   for (NodeId v : mesh.nodes()) {
-    coordinate(mesh.x(v).x()).text(" ");
-    coordinate(mesh.x(v).y()).text(" ");
-    coordinate(mesh.x(v).z()).text("\n");
+    const Vec3& x = mesh.x(v);
+    out.fixed(x.x(), decimals).text(" ").fixed(x.y(), decimals).text(" ").fixed(x.z(), decimals).text("\n");
   }
   for (FaceId f : mesh.faces()) {
     out.text("3");

@@ -48,7 +48,7 @@ TextFile& TextFile::number(double value) { return append(value); }
 TextFile& TextFile::number(double value, int precision) { return append(value, std::chars_format::general, precision); }
 
 TextFile& TextFile::fixed(double value, int decimals) {
-  if (!(std::abs(value) < 1e15)) return append(value);
+  if (decimals < 0 || !(std::abs(value) < 1e15)) return append(value);
   make_room(kLongestNumber);
   char* const begin = buffer_.data() + used_;
   char* end = std::to_chars(begin, buffer_.data() + buffer_.size(), value, std::chars_format::fixed, decimals).ptr;

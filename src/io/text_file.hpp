@@ -22,6 +22,7 @@ class TextFile {
   TextFile& number(double value, int precision);  // as printf's %.<precision>g, precision 1 to 17
   // Rounded to `decimals` (0 to 17) places after the point, without trailing zeros or a
   // negative zero; magnitudes of 1e15 and more, infinities and NaN in their shortest form.
+  // decimals < 0: the shortest exact form, as number(value).
   TextFile& fixed(double value, int decimals);
   TextFile& integer(int64_t value);
   // Writes what is buffered and closes the file: false if anything failed since it was opened.

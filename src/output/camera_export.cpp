@@ -53,6 +53,7 @@ std::vector<CameraFrame> camera_frames(const CameraPath& path, double frame_time
     c.camera = path.at(c.time);
     c.shot = static_cast<int>(path.cuts_in(before, c.time).size());
     c.cut = f > 0 && !path.cuts_in((f - 1) * frame_time, c.time).empty();
+    c.rotation_degrees = zxy_euler_degrees(c.camera);
     out.push_back(c);
   }
   return out;
@@ -85,7 +86,7 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
                            {"target", vec(c.camera.target)},
                            {"forward", vec(forward)},
                            {"up", vec(up)},
-                           {"rotation_degrees", vec(zxy_euler_degrees(c.camera))}});
+                           {"rotation_degrees", vec(c.rotation_degrees)}});
   }
   const std::string json_path = dir + "/camera.json";
   std::ofstream json_file(json_path);
@@ -95,10 +96,9 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
   const std::string chan_path = dir + "/camera.chan";
   TextFile chan(chan_path);
   for (const CameraFrame& c : shot) {
-    const Vec3 rotation = zxy_euler_degrees(c.camera);
     chan.integer(c.frame);
     for (int k = 0; k < 3; ++k) chan.text(" ").fixed(c.camera.position[k], kDecimals);
-    for (int k = 0; k < 3; ++k) chan.text(" ").fixed(rotation[k], kDecimals);
+    for (int k = 0; k < 3; ++k) chan.text(" ").fixed(c.rotation_degrees[k], kDecimals);
     chan.text(" ").fixed(lens.fov_y_degrees, kDecimals).text("\n");
   }
   if (!chan.close()) throw OutputError(chan_path, "cannot write");

@@ -20,6 +20,7 @@ struct CameraFrame {
   Camera camera;
   int shot = 0;      // 0 until the first cut, then one more at each cut
   bool cut = false;  // a cut in (the previous frame's time, this frame's time]
+  Vec3 rotation_degrees = Vec3::Zero();  // zxy_euler_degrees(camera)
 };
 
 // Frames 0 to `frames` of the path, frame f at time f * frame_time.
