@@ -3,6 +3,7 @@
 #include "app/check_command.hpp"
 #include "app/fidelity_command.hpp"
 #include "app/render_command.hpp"
+#include "app/report_command.hpp"
 #include "app/table1.hpp"
 
 #include <chrono>
@@ -39,6 +40,8 @@ const char* kMainHelp =
     "                                     how like a reference run a run looks through the scene's\n"
     "                                     camera (silhouette overlap, wrinkle detail, popping),\n"
     "                                     judged shot by shot against the chaos floor\n"
+    "  vdcloth report RUN_DIR [options]   a page to open in a browser: the run in 3D with a timeline,\n"
+    "                                     its faces and seconds per frame plotted, its summary\n"
     "  vdcloth check RUN_DIR [--every N]  no garment crosses itself, another or a body at any\n"
     "                                     written frame (exact triangle tests)\n"
     "  vdcloth --help                     this text\n"
@@ -269,10 +272,16 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   }
 
   bool line_open = false;
+  // Warnings go to the error stream and to the run's log.txt, kept aside until the output
+  // directory is set up (the run's setup may warn before it).
+  std::optional<RunOutput> output;
+  std::vector<std::string> early_log;
   auto log = [&](const std::string& msg) {
     if (line_open) out << "\n";
     line_open = false;
     err << "vdcloth: " << msg << std::endl;
+    if (output) output->append_log(msg);
+    else early_log.push_back(msg);
   };
   const SimOptions options{args.mode, threads};
   const int segments = resume ? resume->segments + 1 : 1;
@@ -281,7 +290,10 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   const CpuTicks ticks_at_start = machine_ticks();
   Ensemble sim = resume ? Ensemble(std::move(scene), options, log, std::move(resume->parts), dir + "/" + kCheckpointFile)
                         : Ensemble(std::move(scene), options, log);
-  RunOutput output = resume ? RunOutput(dir, resume->frame) : RunOutput(dir);
+  if (resume) output.emplace(dir, resume->frame);
+  else output.emplace(dir);
+  if (resume) output->append_log("resumed at frame " + std::to_string(resume->frame));
+  for (const std::string& msg : early_log) output->append_log(msg);
   const bool prerolls = !resume && sim.frame() < 0;
   const int preroll_frames = prerolls ? -sim.frame() : 0;
   const int first = prerolls ? 0 : sim.frame();
@@ -303,10 +315,11 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   auto stop_part_way = [&](const std::string& what, const std::string& why) {
     if (line_open) out << "\n";
     try {
-      output.write_summary(sim, "failed", what + ": " + why, usage(), segments, done, threads, args.perturbation);
+      output->write_summary(sim, "failed", what + ": " + why, usage(), segments, done, threads, args.perturbation);
     } catch (const std::exception&) {  // the error stream still says why
     }
     err << "vdcloth: " << what << ": " << why << " (frames 0 to " << done << " are in " << dir << ")" << std::endl;
+    output->append_log(what + ": " + why + " (at frame " + std::to_string(done) + ")");
     return kExitSimulationFailed;
   };
   try {
@@ -328,11 +341,11 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
         }
       }
     }
-    if (args.mesh_every > 0 && !resume) output.write_frame(sim, 0);
+    if (args.mesh_every > 0 && !resume) output->write_frame(sim, 0);
     while (done < frames) {
       FrameStats s = sim.step_frame();
-      if (args.mesh_every > 0 && s.frame % args.mesh_every == 0) output.write_frame(sim, s.frame);
-      output.write_stats_row(s);
+      if (args.mesh_every > 0 && s.frame % args.mesh_every == 0) output->write_frame(sim, s.frame);
+      output->write_stats_row(s);
       done = s.frame;
       if (args.checkpoint_every > 0 && (done % args.checkpoint_every == 0 || done == frames)) {
         sim.restart_solvers();
@@ -366,7 +379,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   }
   if (line_open) out << "\n";
   const ResourceUsage total = usage();
-  output.write_summary(sim, "done", "", total, segments, done, threads, args.perturbation);
+  output->write_summary(sim, "done", "", total, segments, done, threads, args.perturbation);
   const double this_segment = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out << "vdcloth: done, " << done - first << " frames in " << format_duration(this_segment) << " ("
       << std::fixed << std::setprecision(3) << this_segment / std::max(done - first, 1) << " s/frame); results in " << dir << std::endl;
@@ -400,6 +413,7 @@ int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostrea
     }
     if (args[0] == "check") return check_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
     if (args[0] == "render") return render_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
+    if (args[0] == "report") return report_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
     if (args[0] == "fidelity") return fidelity_command(std::vector<std::string>(args.begin() + 1, args.end()), out);
     if (args[0] != "run") throw UsageError("unknown command '" + args[0] + "' (try vdcloth --help)");
     for (std::size_t i = 1; i < args.size(); ++i)

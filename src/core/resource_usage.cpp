@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <ctime>
 #include <fstream>
 #include <string>
+#include <thread>
 
 namespace vdc {
 
@@ -43,6 +45,28 @@ ResourceUsage process_usage(const ResourceUsage& before, const CpuTicks& start, 
     u.machine.steal += now.steal - start.steal;
   }
   return u;
+}
+
+MachineDescription describe_machine() {
+  MachineDescription m;
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) == 0) m.host = host;
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; m.cpu.empty() && std::getline(cpuinfo, line);)
+    if (line.rfind("model name", 0) == 0)
+      if (const auto start = line.find_first_not_of(" \t", line.find(':') + 1); line.find(':') != std::string::npos && start != std::string::npos)
+        m.cpu = line.substr(start);
+  m.cores = static_cast<int>(std::thread::hardware_concurrency());
+  return m;
+}
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
 }
 
 }  // namespace vdc

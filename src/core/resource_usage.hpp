@@ -1,6 +1,7 @@
 // What a run costs the machine: wall and CPU time, peak memory, and the host's steal while it
 // ran, summed over the pieces of a run that was stopped and resumed.
 #pragma once
+#include <string>
 
 namespace vdc {
 
@@ -29,5 +30,16 @@ long resident_kib();
 // summed, peak memory the larger, and the machine's ticks since `start`. `wall_seconds` is
 // before's plus `wall_now`.
 ResourceUsage process_usage(const ResourceUsage& before, const CpuTicks& start, double wall_now);
+
+// The machine a run ran on, as its summary records it: host name, CPU model (/proc/cpuinfo's
+// "model name"), cores the process may use. Empty strings where they cannot be read.
+struct MachineDescription {
+  std::string host, cpu;
+  int cores = 0;
+};
+MachineDescription describe_machine();
+
+// The time now in UTC, as "2026-11-29T11:42:07Z".
+std::string utc_now_iso8601();
 
 }  // namespace vdc

@@ -78,6 +78,7 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   }
   if (ec) throw InputError(dir + "/frames", "", "cannot list: " + ec.message());
   fs::remove(fs::path(dir) / "summary.json", ec);
+  std::ofstream(fs::path(dir) / kLogFile, std::ios::trunc);  // empty: no warning yet
   // A checkpoint left by an earlier run must not be resumed into this one.
   fs::remove(fs::path(dir) / kCheckpointFile, ec);
   stats_.open(dir + "/stats.csv");
@@ -124,6 +125,11 @@ RunOutput::RunOutput(const std::string& dir, int resume_at) : dir_(dir) {
   fs::remove(fs::path(dir) / "summary.json", ec);
   stats_.open(stats_path, std::ios::app);
   if (!stats_) throw OutputError(stats_path, "cannot write");
+}
+
+void RunOutput::append_log(const std::string& line) const {
+  std::ofstream log(dir_ + "/" + kLogFile, std::ios::app);
+  log << line << "\n";
 }
 
 void RunOutput::tally(int faces, double seconds) {
@@ -188,6 +194,10 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   if (!error.empty()) j["error"] = error;
   j["mode"] = sim_mode_name(run.options().mode);
   j["threads"] = threads;
+  j["version"] = VDCLOTH_VERSION;
+  const MachineDescription machine = describe_machine();
+  j["machine"] = {{"host", machine.host}, {"cpu", machine.cpu}, {"cores", machine.cores}};
+  j["finished"] = utc_now_iso8601();
   j["groups"] = run.parts().size();
   j["frames"] = frames_done;
   j["frame_time"] = scene.frame_time;

@@ -10,6 +10,9 @@
 
 namespace vdc {
 
+// The run's log: every warning the run gave, one line each, in order (also on the error stream).
+inline constexpr const char* kLogFile = "log.txt";
+
 // The mesh files of one written frame, by mesh name ("cloth_<garment>", "obstacle_<name>").
 using FrameFiles = std::map<std::string, std::string>;
 
@@ -31,6 +34,9 @@ class RunOutput {
   RunOutput(const std::string& dir, int resume_at);
   void write_frame(const Ensemble& run, int frame) const;  // meshes of every garment and obstacle
   void write_stats_row(const FrameStats& s);
+  // Adds a line to DIR/log.txt (a new run starts it empty, a resumed one goes on with it); a
+  // log that cannot be written does not stop the run (the error stream still has the line).
+  void append_log(const std::string& line) const;
   // status: "done" or "failed"; error: message when failed. `usage` covers all `segments`
   // processes the run was made in; `perturbation`: what the scene was perturbed by.
   void write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
