@@ -15,6 +15,9 @@ packages=(
   libbenchmark-dev       # bench/
   assimp-testmodels      # CMU motion capture BVH files for the importer's tests
   ffmpeg                 # `vdcloth render --video`: the frames as an H.264 MP4
+  libjs-three            # `vdcloth report`: its 3D viewer (three.js)
+  libjs-chart.js         # `vdcloth report`: its plots (Chart.js)
+  chromium-headless-shell  # the report's test opens it in a real browser
 )
 if [ "${1:-}" = "fuzz" ]; then
   packages+=(

@@ -383,6 +383,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   const double this_segment = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out << "vdcloth: done, " << done - first << " frames in " << format_duration(this_segment) << " ("
       << std::fixed << std::setprecision(3) << this_segment / std::max(done - first, 1) << " s/frame); results in " << dir << std::endl;
+  out << "vdcloth: to see it in a browser: vdcloth report " << dir << " writes " << dir << "/report/index.html\n";
   if (args.mesh_every > 0 && sim.parts().front()->scene().camera)
     out << "vdcloth: to look at it: vdcloth render " << args.scene << " " << dir << " draws it through the shot camera into "
         << dir << "/render/ (add --video for an MP4, --colour view --wireframe for the mesh); " << dir

@@ -79,6 +79,9 @@ RunOutput::RunOutput(const std::string& dir) : dir_(dir) {
   if (ec) throw InputError(dir + "/frames", "", "cannot list: " + ec.message());
   fs::remove(fs::path(dir) / "summary.json", ec);
   std::ofstream(fs::path(dir) / kLogFile, std::ios::trunc);  // empty: no warning yet
+  // What `vdcloth check` found of an earlier run's frames says nothing of this run's.
+  fs::remove(fs::path(dir) / "check.csv", ec);
+  fs::remove(fs::path(dir) / "check_status.txt", ec);
   // A checkpoint left by an earlier run must not be resumed into this one.
   fs::remove(fs::path(dir) / kCheckpointFile, ec);
   stats_.open(dir + "/stats.csv");
@@ -123,6 +126,8 @@ RunOutput::RunOutput(const std::string& dir, int resume_at) : dir_(dir) {
   for (const auto& entry : fs::directory_iterator(fs::path(dir) / "frames", ec))
     if (const auto f = parse_frame_file(entry.path().filename().string()); f && f->frame > resume_at) fs::remove(entry.path(), ec);
   fs::remove(fs::path(dir) / "summary.json", ec);
+  fs::remove(fs::path(dir) / "check.csv", ec);
+  fs::remove(fs::path(dir) / "check_status.txt", ec);
   stats_.open(stats_path, std::ios::app);
   if (!stats_) throw OutputError(stats_path, "cannot write");
 }

@@ -658,6 +658,7 @@ TEST_F(CliTest, RunWritesTheCameraOfEveryFrame) {
   const std::string path = scene("", kCutCamera);
   ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "4", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
   EXPECT_NE(out_.str().find("to look at it: vdcloth render " + path + " " + out_dir() + " draws it"), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("vdcloth report " + out_dir() + " writes " + out_dir() + "/report/index.html"), std::string::npos) << out_.str();
   const nlohmann::json camera = nlohmann::json::parse(std::ifstream(dir_ / "out" / "camera.json"));
   ASSERT_EQ(camera["frames"].size(), 5u);
   for (int f = 0; f <= 4; ++f) {

@@ -137,7 +137,7 @@ const vdcloth = (() => {
         });
         this.group.add(new THREE.Mesh(corners, material));
         if (style.wireframe) {
-          const wire = new THREE.Mesh(indexed, new THREE.MeshBasicMaterial({ color: 0x1a1a1a, wireframe: true }));
+          const wire = new THREE.Mesh(indexed, new THREE.MeshBasicMaterial({ color: 0x000000, wireframe: true, transparent: true, opacity: 0.3 }));
           this.group.add(wire);
         } else {
           indexed.dispose();
@@ -551,7 +551,7 @@ const vdcloth = (() => {
     out.tables.summary = document.getElementById('summary-table').innerText;
     out.tables.log = document.getElementById('log-table').innerText;
     out.errors = window.vdclothErrors;
-    const pre = document.getElementById('selftest');
+    const pre = document.getElementById('selftest-result');
     pre.textContent = JSON.stringify(out);
     pre.hidden = false;
   }

@@ -1,0 +1,279 @@
+// `vdcloth report`: the page opened in a real browser (Debian's headless Chromium) loads without
+// an error, draws the cloth as the project's own renderer does, changes frame through its
+// timeline and plots the runs' own numbers; bad inputs exit 2 with nothing written.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/cli.hpp"
+#include "app/report_command.hpp"
+#include "app/report_data.hpp"
+#include "app/run_frames.hpp"
+#include "core/error.hpp"
+#include "scene/scene.hpp"
+
+namespace vdc {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A sheet hanging above a ball, seen by a camera that cuts at 0.08 s (frame 2).
+const char* kScene =
+    R"({"frames": 4, "substeps": 2, "remeshing": {"size": [0.06, 0.5]},)"
+    R"( "camera": {"fov": 40, "width": 320, "height": 240, "keys": [)"
+    R"({"time": 0, "position": [0.5, 0.6, 1.6], "target": [0.5, 0.0, -0.5]},)"
+    R"({"time": 0.08, "position": [0.6, 0.9, 1.4], "target": [0.5, 0.0, -0.5], "cut": true}]},)"
+    R"( "obstacles": [{"name": "ball", "mesh": {"sphere": {"radius": 0.2, "subdivisions": 2}}, "transform": {"translate": [0.5, -0.5, -0.5]}}],)"
+    R"( "garments": [{"name": "s", "mesh": {"grid": {"size": [1, 1], "cells": [6, 6]}}, "material": "cotton.json",)"
+    R"( "handles": [{"uv": [[0, 1], [1, 1]]}]}]})";
+
+class ReportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("vdcloth_report_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    write("cotton.json", R"({"name": "c", "density": 0.13, "stretch": {"warp": 5000, "weft": 3500, "shear": 300}, "bending": 1e-5})");
+    scene_ = write("scene.json", kScene);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  int cli(std::vector<std::string> args) {
+    out_.str("");
+    err_.str("");
+    return run_cli(args, out_, err_, false);
+  }
+  // A run of the scene in `mode` into dir_/name.
+  std::string run(const std::string& mode, const std::string& name) {
+    const std::string out = (dir_ / name).string();
+    EXPECT_EQ(cli({"run", scene_, "--mode", mode, "--out", out, "--threads", "1"}), kExitOk) << err_.str();
+    return out;
+  }
+
+  fs::path dir_;
+  std::string scene_;
+  std::ostringstream out_, err_;
+};
+
+// Everything a program prints, and its exit status.
+struct Output {
+  std::string text;
+  int status = -1;
+};
+Output capture(const std::string& command) {
+  Output o;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[4096];
+    for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) o.text.append(buffer, n);
+    o.status = pclose(pipe);
+  }
+  return o;
+}
+
+// Debian's headless Chromium (chromium-headless-shell), or the full browser.
+std::string browser() {
+  for (const char* name : {"chromium-headless-shell", "chromium"})
+    if (capture(std::string("command -v ") + name + " 2>/dev/null").status == 0) return name;
+  return "";
+}
+
+std::string unescape_html(std::string s) {
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{{"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&amp;", "&"}}) {
+    for (std::size_t at = 0; (at = s.find(from, at)) != std::string::npos; at += to.size()) s.replace(at, from.size(), to);
+  }
+  return s;
+}
+
+// The vertices of each mesh of a written frame, from its OBJ ("v" lines).
+std::map<std::string, int> obj_vertices(const FrameFiles& files) {
+  std::map<std::string, int> counts;
+  for (const auto& [name, path] : files) {
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);) counts[name] += line.rfind("v ", 0) == 0;
+  }
+  return counts;
+}
+
+// A stats.csv column.
+std::vector<double> stats_column(const std::string& run_dir, const std::string& column) {
+  std::ifstream in(run_dir + "/stats.csv");
+  std::string header;
+  std::getline(in, header);
+  std::vector<std::string> names;
+  std::stringstream h(header);
+  for (std::string cell; std::getline(h, cell, ',');) names.push_back(cell);
+  const auto c = static_cast<std::size_t>(std::find(names.begin(), names.end(), column) - names.begin());
+  std::vector<double> values;
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream cells(line);
+    std::string cell;
+    for (std::size_t k = 0; k <= c && std::getline(cells, cell, ','); ++k) {
+    }
+    values.push_back(std::stod(cell));
+  }
+  return values;
+}
+
+TEST_F(ReportTest, TheReportOpensInABrowserAndShowsTheRuns) {
+  const std::string name = browser();
+  ASSERT_FALSE(name.empty()) << "no headless Chromium: scripts/install-deps.sh installs chromium-headless-shell";
+  const std::string view = run("view", "view"), fixed = run("fixed", "fixed");
+  ASSERT_EQ(cli({"report", view, "--compare", fixed}), kExitOk) << err_.str();
+  const fs::path page = fs::path(view) / "report" / "index.html";
+  ASSERT_TRUE(fs::exists(page));
+  for (const char* lib : {"three.min.js", "OrbitControls.js", "chart.min.js"}) EXPECT_TRUE(fs::exists(fs::path(view) / "report" / "lib" / lib)) << lib;
+
+  const std::string command = name + " --no-sandbox --enable-unsafe-swiftshader --enable-logging=stderr --v=0 --user-data-dir='" +
+                              (dir_ / "browser").string() + "' --virtual-time-budget=30000 --dump-dom 'file://" +
+                              fs::absolute(page).string() + "#selftest' 2>'" + (dir_ / "browser.log").string() + "'";
+  const Output dom = capture(command);
+  ASSERT_EQ(dom.status, 0) << command;
+  const std::string open = "<pre id=\"selftest-result\">";
+  const std::size_t start = dom.text.find(open), end = dom.text.find("</pre>", start);
+  ASSERT_NE(start, std::string::npos) << "the page's check did not finish:\n" << dom.text.substr(0, 2000);
+  const json result = json::parse(unescape_html(dom.text.substr(start + open.size(), end - start - open.size())));
+
+  // No error in the page, nothing on the browser's console but its WebGL performance notes (the
+  // check reads pixels back).
+  EXPECT_TRUE(result["errors"].empty()) << result["errors"].dump();
+  std::ifstream log(dir_ / "browser.log");
+  for (std::string line; std::getline(log, line);)
+    if (line.find(":CONSOLE") != std::string::npos) EXPECT_NE(line.find("GL Driver Message"), std::string::npos) << line;
+
+  // The first frame drawn, with each run's meshes as written, its cloth covering the pixels the
+  // project's renderer gives it through the same camera (antialiased edges aside).
+  const std::map<int, FrameFiles> view_frames = read_frame_files(view), fixed_frames = read_frame_files(fixed);
+  ASSERT_EQ(result["frames"], json({0, 1, 2, 3, 4}));
+  const json& first = result["shown"][0];
+  EXPECT_EQ(first["frames"], json({0, 0}));
+  EXPECT_EQ(first["vertices"][0], json(obj_vertices(view_frames.at(0))));
+  EXPECT_EQ(first["vertices"][1], json(obj_vertices(fixed_frames.at(0))));
+  const Scene scene = load_scene(scene_);
+  auto cloth_pixels = [&](int frame) {
+    FrameFiles cloth{{"cloth_s", view_frames.at(frame).at("cloth_s")}};
+    const DrawnFrame drawn = draw_frame(scene.camera->at(frame * scene.frame_time), cloth, 1.0);
+    return static_cast<double>(std::count(drawn.pixels.mesh.begin(), drawn.pixels.mesh.end(), 0));
+  };
+  const double expected_first = cloth_pixels(0);
+  ASSERT_GT(expected_first, 2000);  // the sheet fills a good part of the 320 x 240 picture
+  EXPECT_NEAR(first["cloth_pixels"].get<double>(), expected_first, 0.06 * expected_first);
+  EXPECT_GT(first["pixels"].get<double>(), first["cloth_pixels"].get<double>() + 200);  // the ball too
+
+  // The timeline dragged to the last frame: the label, the meshes and the picture follow.
+  const json& last = result["shown"][1];
+  EXPECT_EQ(last["frames"], json({4, 4}));
+  EXPECT_NE(last["label"].get<std::string>().find("frame 4 "), std::string::npos) << last["label"];
+  EXPECT_NE(last["label"].get<std::string>().find("shot 1"), std::string::npos) << last["label"];
+  EXPECT_EQ(last["vertices"][0], json(obj_vertices(view_frames.at(4))));
+  EXPECT_NE(last["vertices"][0], first["vertices"][0]);  // remeshed as it fell
+  EXPECT_NEAR(last["cloth_pixels"].get<double>(), cloth_pixels(4), 0.06 * cloth_pixels(4));
+  EXPECT_GT(result["shown"][2]["cloth_pixels"].get<double>(), 0.9 * last["cloth_pixels"].get<double>());  // view colours, wireframe
+
+  // The plots hold the runs' stats.csv; the time breakdown, its timed parts and the rest of the
+  // frame's wall time (none where the parts, timed across threads, add up to more).
+  EXPECT_EQ(result["plots"]["faces"], json({stats_column(view, "faces"), stats_column(fixed, "faces")}));
+  EXPECT_EQ(result["plots"]["seconds"], json({stats_column(view, "seconds"), stats_column(fixed, "seconds")}));
+  const std::vector<double> seconds = stats_column(view, "seconds");
+  const json& parts = result["plots"]["breakdown"][0];
+  const char* timed[] = {"assemble_seconds", "solve_seconds", "remesh_seconds", "collision_seconds", "view_seconds"};
+  ASSERT_EQ(parts.size(), std::size(timed) + 1);
+  std::vector<double> sum(seconds.size(), 0.0);
+  for (std::size_t k = 0; k < std::size(timed); ++k) {
+    const std::vector<double> column = stats_column(view, timed[k]);
+    EXPECT_EQ(parts[k], json(column)) << timed[k];
+    for (std::size_t f = 0; f < sum.size(); ++f) sum[f] += column[f];
+  }
+  for (std::size_t f = 0; f < seconds.size(); ++f) EXPECT_NEAR(parts.back()[f].get<double>(), std::max(0.0, seconds[f] - sum[f]), 1e-9) << "frame " << f + 1;
+  EXPECT_EQ(result["plots"]["cuts"], json({2}));
+  const std::string summary = result["tables"]["summary"];
+  for (const char* says : {"view", "fixed", "done", "cores"}) EXPECT_NE(summary.find(says), std::string::npos) << says << " in\n" << summary;
+  EXPECT_NE(result["tables"]["log"].get<std::string>().find("0 message(s)"), std::string::npos) << result["tables"]["log"];
+}
+
+TEST_F(ReportTest, BadInputsExitTwoWithNothingWritten) {
+  EXPECT_EQ(cli({"report"}), kExitBadInput);
+  EXPECT_EQ(cli({"report", (dir_ / "nowhere").string()}), kExitBadInput);
+  EXPECT_NE(err_.str().find("nowhere/summary.json"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "nowhere"));
+  EXPECT_EQ(cli({"report", "--help"}), kExitOk);
+  EXPECT_NE(out_.str().find("--compare"), std::string::npos);
+
+  const std::string view = run("view", "view");
+  EXPECT_EQ(cli({"report", view, "--every", "0"}), kExitBadInput);
+  // Something else where the report would go is left alone.
+  fs::create_directories(dir_ / "notes");
+  write("notes/keep.txt", "mine");
+  EXPECT_EQ(cli({"report", view, "--out", (dir_ / "notes").string()}), kExitBadInput);
+  EXPECT_NE(err_.str().find("not a vdcloth report"), std::string::npos) << err_.str();
+  EXPECT_TRUE(fs::exists(dir_ / "notes" / "keep.txt"));
+  // A damaged stats.csv is named with its line; no report is left.
+  std::ofstream(fs::path(view) / "stats.csv", std::ios::app) << "5,12,abc\n";
+  EXPECT_EQ(cli({"report", view}), kExitBadInput);
+  EXPECT_NE(err_.str().find("stats.csv"), std::string::npos) << err_.str();
+  EXPECT_NE(err_.str().find("line 6"), std::string::npos) << err_.str();
+  EXPECT_FALSE(fs::exists(fs::path(view) / "report"));
+  EXPECT_FALSE(fs::exists(fs::path(view) / "report.partial"));
+  // Without Debian's libraries: the package to install.
+  EXPECT_THROW(
+      {
+        try {
+          report_command({view}, out_, (dir_ / "no-javascript").string());
+        } catch (const UsageError& e) {
+          EXPECT_NE(std::string(e.what()).find("libjs-three"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      UsageError);
+}
+
+// A run's warnings go to its log.txt as to the error stream, those of its setup (before the
+// output directory is made ready) too; a new run in the same directory starts it afresh.
+TEST_F(ReportTest, ARunKeepsItsWarningsInLogTxt) {
+  std::string crossing = kScene;
+  const std::string ball_below = R"("translate": [0.5, -0.5, -0.5])", ball_through = R"("translate": [0.5, 0.0, -0.5])";
+  crossing.replace(crossing.find(ball_below), ball_below.size(), ball_through);
+  const std::string path = write("crossing.json", crossing);
+  const std::string out = (dir_ / "run").string();
+  ASSERT_EQ(cli({"run", path, "--out", out, "--frames", "1", "--threads", "1"}), kExitOk) << err_.str();
+  const std::string warning = "frame 0: untangling 0 cloth-cloth and ";
+  ASSERT_NE(err_.str().find(warning), std::string::npos) << err_.str();
+  std::ifstream log(fs::path(out) / "log.txt");
+  const std::string logged((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(logged.find(warning), std::string::npos) << logged;
+  const std::string errors = err_.str();
+  EXPECT_EQ(std::count(logged.begin(), logged.end(), '\n'), std::count(errors.begin(), errors.end(), '\n')) << "every line once:\n" << logged;
+  ASSERT_EQ(cli({"run", scene_, "--out", out, "--frames", "1", "--threads", "1"}), kExitOk) << err_.str();
+  EXPECT_EQ(err_.str(), "");
+  EXPECT_EQ(fs::file_size(fs::path(out) / "log.txt"), 0u);
+}
+
+TEST(ReportData, Base64IsRfc4648) {
+  // RFC 4648, section 10.
+  EXPECT_EQ(base64(""), "");
+  EXPECT_EQ(base64("f"), "Zg==");
+  EXPECT_EQ(base64("fo"), "Zm8=");
+  EXPECT_EQ(base64("foo"), "Zm9v");
+  EXPECT_EQ(base64("foob"), "Zm9vYg==");
+  EXPECT_EQ(base64("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(base64("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(base64(std::string("\xff\xfe\x00", 3)), "//4A");
+}
+
+}  // namespace
+}  // namespace vdc
