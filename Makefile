@@ -39,9 +39,15 @@ run: deps configure
 	cmake --build build -j $(JOBS) --target vdcloth
 	build/vdcloth run $(SCENE) --mode $(MODE) --frames $(FRAMES) --out $(OUT)
 
-test: build build-asan
-	ctest --test-dir build-asan --output-on-failure -j $(JOBS)
-	ctest --test-dir build --output-on-failure -j $(JOBS)
+# The tests need the simulator and the scene tests of build/ (not its benchmarks) and the unit
+# tests of build-asan/. One ctest runs both trees' tests together (build-tests/ lists them), the
+# long scene tests first (their COST, tests/CMakeLists.txt), so neither tree's last tests leave a
+# core idle while the other's wait.
+test: deps configure build-asan
+	cmake --build build -j $(JOBS) --target vdcloth vdcloth_scene_tests
+	@mkdir -p build-tests
+	@printf 'subdirs("%s/build-asan")\nsubdirs("%s/build")\n' "$(CURDIR)" "$(CURDIR)" > build-tests/CTestTestfile.cmake
+	ctest --test-dir build-tests --output-on-failure -j $(JOBS)
 
 bench: build
 	build/bench/vdcloth_bench
@@ -57,4 +63,4 @@ fuzz:
 	fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
 
 clean:
-	rm -rf build build-asan build-fuzz
+	rm -rf build build-asan build-fuzz build-tests

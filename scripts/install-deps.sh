@@ -18,6 +18,7 @@ packages=(
   libjs-three            # `vdcloth report`: its 3D viewer (three.js)
   libjs-chart.js         # `vdcloth report`: its plots (Chart.js)
   chromium-headless-shell  # the report's test opens it in a real browser
+  blender                # the test of the Blender add-on (tools/blender/) runs it headless
 )
 if [ "${1:-}" = "fuzz" ]; then
   packages+=(

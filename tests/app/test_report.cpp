@@ -1,6 +1,7 @@
-// `vdcloth report`: the page opened in a real browser (Debian's headless Chromium) loads without
-// an error, draws the cloth as the project's own renderer does, changes frame through its
-// timeline and plots the runs' own numbers; bad inputs exit 2 with nothing written.
+// Showing a run to people and their tools: `vdcloth report`'s page opened in a real browser
+// (Debian's headless Chromium) loads without an error, draws the cloth as the project's own
+// renderer does, changes frame through its timeline and plots the runs' own numbers; bad inputs
+// exit 2 with nothing written; a run's log.txt; the Blender add-on in Debian's Blender.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -261,6 +262,22 @@ TEST_F(ReportTest, ARunKeepsItsWarningsInLogTxt) {
   ASSERT_EQ(cli({"run", scene_, "--out", out, "--frames", "1", "--threads", "1"}), kExitOk) << err_.str();
   EXPECT_EQ(err_.str(), "");
   EXPECT_EQ(fs::file_size(fs::path(out) / "log.txt"), 0u);
+}
+
+// The Blender add-on (tools/blender/vdcloth_import.py) loads a run into Debian's Blender, run
+// headless: tools/blender/check_import.py finds every object's vertex and face counts at every
+// frame (counted from the OBJ's lines), the pattern UVs, the view factors and the camera (with
+// its cut) as the run wrote them.
+TEST_F(ReportTest, BlenderLoadsTheRunAsItWasWritten) {
+  ASSERT_EQ(capture("command -v blender >/dev/null 2>&1").status, 0) << "no blender: scripts/install-deps.sh installs it";
+  const std::string view = run("view", "view");
+  const std::string command = "blender -b --factory-startup --python '" + std::string(VDCLOTH_SOURCE_DIR) +
+                              "/tools/blender/check_import.py' -- '" + view + "' 2>&1";
+  const Output good = capture(command);
+  EXPECT_EQ(good.status, 0) << good.text;
+  // Five frames (0 to 4) of the sheet and the ball; the camera at each.
+  EXPECT_NE(good.text.find("check_import: 10 object frames and 5 camera frames checked, 0 failure(s)"), std::string::npos) << good.text;
+
 }
 
 TEST(ReportData, Base64IsRfc4648) {
