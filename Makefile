@@ -15,13 +15,12 @@ deps:
 	@scripts/install-deps.sh
 
 # build/: Release, the simulator, the benchmarks and the scene tests (whole scenes at full speed).
-# The layers a frame's time does not go through (reading scenes, writing output, the commands)
-# compile as unity files of eight sources, in half the time; the simulating layers stay one
-# object a source, as they are measured (a whole unity build runs bit for bit the same, but its
-# speed differed by a few percent either way in runs side by side).
+# Every layer compiles as unity files of eight sources, in half the time of one object a source;
+# the two run bit for bit the same, and their speeds in runs side by side differ by less than
+# this machine's spread (bench/RESULTS.md, "A Release build with unity files").
 configure:
 	cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DVDCLOTH_TESTS=OFF -DVDCLOTH_SCENE_TESTS=ON -DVDCLOTH_BENCH=ON \
-	  -DVDCLOTH_UNITY_LAYERS="io;scene;render;output;app"
+	  -DVDCLOTH_UNITY=ON -DVDCLOTH_UNITY_LAYERS=""
 
 build: deps configure
 	cmake --build build -j $(JOBS)

@@ -1,5 +1,6 @@
 #include "app/report_command.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -177,6 +178,15 @@ int report_command(const std::vector<std::string>& args, std::ostream& out, cons
   std::vector<int> shown;
   for (std::size_t k = 0; k < common.size(); k += static_cast<std::size_t>(r.every)) shown.push_back(common[k]);
   if (!common.empty() && shown.back() != common.back()) shown.push_back(common.back());
+
+  if (shown.empty())
+    out << "vdcloth report: "
+        << (std::all_of(frames.begin(), frames.end(), [](const auto& f) { return f.empty(); })
+                ? "no frame meshes (runs made with --mesh-every 0)"
+                : "no frame meshes in common")
+        << ": the report has its plots and tables, no 3D view\n";
+  else if (records.front()["camera"].is_null())
+    out << "vdcloth report: " << r.run << " has no camera.json (its scene has no camera): the 3D view has the orbit camera only\n";
 
   // Written aside and renamed into place: a report stopped part-way leaves no folder that looks whole.
   const fs::path target = fs::path(r.out).lexically_normal();

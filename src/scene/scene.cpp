@@ -183,8 +183,8 @@ Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment,
   auto c = cells.items();
   if (c.size() != 2) cells.fail("expected [nx, ny]");
   long long nx = c[0].integer(), ny = c[1].integer();
-  if (nx < 1 || ny < 1 || nx > 4'000'000 || ny > 4'000'000 || nx * ny > 4'000'000)
-    cells.fail("cell counts must be between 1 and 4,000,000 in all");
+  if (nx < 1 || ny < 1 || nx > 1'000'000 || ny > 1'000'000 || nx * ny > 1'000'000)
+    cells.fail("cell counts must be between 1 and 1,000,000 in all (2,000,000 triangles)");
   return build_mesh(make_grid(size.x(), size.y(), static_cast<int>(nx), static_cast<int>(ny)));
 }
 

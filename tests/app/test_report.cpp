@@ -154,8 +154,9 @@ TEST_F(ReportTest, TheReportOpensInABrowserAndShowsTheRuns) {
   // check reads pixels back).
   EXPECT_TRUE(result["errors"].empty()) << result["errors"].dump();
   std::ifstream log(dir_ / "browser.log");
-  for (std::string line; std::getline(log, line);)
+  for (std::string line; std::getline(log, line);) {
     if (line.find(":CONSOLE") != std::string::npos) EXPECT_NE(line.find("GL Driver Message"), std::string::npos) << line;
+  }
 
   // The first frame drawn, with each run's meshes as written, its cloth covering the pixels the
   // project's renderer gives it through the same camera (antialiased edges aside).
@@ -241,6 +242,26 @@ TEST_F(ReportTest, BadInputsExitTwoWithNothingWritten) {
         }
       },
       UsageError);
+}
+
+// A run without frame meshes or without a camera still has its report, which says what it lacks.
+TEST_F(ReportTest, ThinRunsGetAReportThatSaysWhatItLacks) {
+  const std::string bare = (dir_ / "bare").string();
+  ASSERT_EQ(cli({"run", scene_, "--out", bare, "--threads", "1", "--frames", "2", "--mesh-every", "0"}), kExitOk) << err_.str();
+  ASSERT_EQ(cli({"report", bare}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find("no frame meshes (runs made with --mesh-every 0)"), std::string::npos) << out_.str();
+  EXPECT_TRUE(fs::exists(fs::path(bare) / "report" / "data" / "runs.js"));
+  EXPECT_FALSE(fs::exists(fs::path(bare) / "report" / "data" / "run0" / "0001.js"));
+
+  std::string no_camera = kScene;
+  const std::size_t camera = no_camera.find(R"( "camera")"), obstacles = no_camera.find(R"( "obstacles")");
+  no_camera.erase(camera, obstacles - camera);
+  const std::string path = write("no-camera.json", no_camera), out = (dir_ / "no-camera").string();
+  ASSERT_EQ(cli({"run", path, "--out", out, "--threads", "1", "--frames", "1"}), kExitOk) << err_.str();
+  ASSERT_EQ(cli({"report", out}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find("has no camera.json (its scene has no camera): the 3D view has the orbit camera only"), std::string::npos)
+      << out_.str();
+  EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "data" / "run0" / "0001.js"));
 }
 
 // A run's warnings go to its log.txt as to the error stream, those of its setup (before the

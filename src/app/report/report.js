@@ -187,6 +187,7 @@ const vdcloth = (() => {
     playing: false,
     showing: Promise.resolve(),
     charts: {},
+    framed: false,     // the orbit camera placed on the meshes (runs without a camera)
   };
 
   function style() {
@@ -235,10 +236,25 @@ const vdcloth = (() => {
     state.showing = Promise.all(state.viewers.map((v) => loadFrame(v.runIndex, frame))).then((all) => {
       if (state.index !== index) return;
       all.forEach((meshes, k) => state.viewers[k].show(frame, meshes, style()));
+      if (!cameraData() && !state.framed) frameOrbitCamera();
       placeShotCamera(frame);
       drawAll();
     });
     return state.showing;
+  }
+
+  // Without a shot camera, the orbit camera starts looking at the first frame's meshes whole.
+  function frameOrbitCamera() {
+    const box = new THREE.Box3().setFromObject(state.viewers[0].group);
+    if (box.isEmpty()) return;
+    const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
+    const distance = size / (2 * Math.tan((state.orbitCamera.fov * Math.PI) / 360)) + size / 2;
+    state.orbitCamera.position.copy(centre).add(new THREE.Vector3(0, 0.4, 1).normalize().multiplyScalar(distance));
+    for (const controls of state.controls) {
+      controls.target.copy(centre);
+      controls.update();
+    }
+    state.framed = true;
   }
 
   function redraw() {
