@@ -47,15 +47,14 @@ TriangleSoup read_soup(const std::string& path) {
 int check_command(const std::vector<std::string>& args, std::ostream& out) {
   std::string run;
   int every = 1;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
+  for (ArgumentReader in(args); !in.done();) {
+    const std::string& a = in.next();
     if (a == "--help" || a == "-h") {
       out << kCheckHelp;
       return kExitOk;
     }
     if (a == "--every") {
-      if (i + 1 >= args.size()) throw UsageError("--every needs a value");
-      every = parse_positive_int(a, args[++i]);
+      every = parse_positive_int(a, in.value());
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "' for check (try vdcloth check --help)");
     } else if (run.empty()) {

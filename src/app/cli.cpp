@@ -161,34 +161,30 @@ namespace {
 
 RunArgs parse_run_args(const std::vector<std::string>& args) {
   RunArgs r;
-  for (std::size_t i = 1; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
+  for (ArgumentReader in(args, 1); !in.done();) {
+    const std::string& a = in.next();
     if (a == "--mode") {
-      const std::string& m = value();
+      const std::string& m = in.value();
       if (!parse_sim_mode(m, r.mode)) throw UsageError("--mode expects fixed, adaptive or view, got '" + m + "'");
     } else if (a == "--frames") {
-      r.frames = parse_positive_int(a, value());
+      r.frames = parse_positive_int(a, in.value());
     } else if (a == "--out") {
-      r.out = value();
+      r.out = in.value();
       if (r.out.empty()) throw UsageError("--out needs a directory");
     } else if (a == "--threads") {
-      r.threads = parse_int_in(a, value(), 1, kMaxThreads);
+      r.threads = parse_int_in(a, in.value(), 1, kMaxThreads);
     } else if (a == "--mesh-every") {
-      r.mesh_every = parse_int_in(a, value(), 0, 1'000'000);
+      r.mesh_every = parse_int_in(a, in.value(), 0, 1'000'000);
     } else if (a == "--checkpoint-every") {
-      r.checkpoint_every = parse_int_in(a, value(), 0, 1'000'000);
+      r.checkpoint_every = parse_int_in(a, in.value(), 0, 1'000'000);
     } else if (a == "--resume") {
       r.resume = true;
     } else if (a == "--group") {
-      r.groups.push_back(value());
+      r.groups.push_back(in.value());
     } else if (a == "--perturb") {
-      r.perturbation.gravity = parse_number(a, value(), -kMaxPerturbation, kMaxPerturbation);
+      r.perturbation.gravity = parse_number(a, in.value(), -kMaxPerturbation, kMaxPerturbation);
     } else if (a == "--perturb-resolution") {
-      r.perturbation.resolution = parse_number(a, value(), -kMaxResolutionPerturbation, kMaxResolutionPerturbation);
+      r.perturbation.resolution = parse_number(a, in.value(), -kMaxResolutionPerturbation, kMaxResolutionPerturbation);
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "'");
     } else if (r.scene.empty()) {

@@ -30,6 +30,23 @@ int parse_positive_int(const std::string& option, const std::string& value);
 // the range otherwise.
 double parse_number(const std::string& option, const std::string& value, double lowest, double highest);
 
+// A command's arguments read in order: next() gives the next one, value() the value of the
+// option next() just gave (UsageError "OPTION needs a value" when the arguments end first).
+class ArgumentReader {
+ public:
+  explicit ArgumentReader(const std::vector<std::string>& args, std::size_t first = 0) : args_(args), next_(first) {}
+  bool done() const { return next_ >= args_.size(); }
+  const std::string& next() { return args_[next_++]; }
+  const std::string& value() {
+    if (done()) throw UsageError(args_[next_ - 1] + " needs a value");
+    return args_[next_++];
+  }
+
+ private:
+  const std::vector<std::string>& args_;
+  std::size_t next_;
+};
+
 // `interactive`: out is a terminal, so progress redraws one line instead of logging each frame.
 int run_cli(const std::vector<std::string>& args, std::ostream& out, std::ostream& err, bool interactive);
 

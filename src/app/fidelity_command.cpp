@@ -72,28 +72,24 @@ struct FidelityArgs {
 FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
   FidelityArgs f;
   std::vector<std::string> positional;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
+  for (ArgumentReader in(args); !in.done();) {
+    const std::string& a = in.next();
     if (a == "--floor" || a == "--out") {
-      const std::string& dir = value();
+      const std::string& dir = in.value();
       if (dir.empty()) throw UsageError(a + " needs a directory");
       (a == "--floor" ? f.floor : f.out) = dir;
     } else if (a == "--every") {
-      f.every = parse_positive_int(a, value());
+      f.every = parse_positive_int(a, in.value());
     } else if (a == "--scale") {
-      f.scale = parse_number(a, value(), 0.05, 4);
+      f.scale = parse_number(a, in.value(), 0.05, 4);
     } else if (a == "--overlap-margin") {
-      f.targets.overlap_margin = parse_number(a, value(), 0, 1);
+      f.targets.overlap_margin = parse_number(a, in.value(), 0, 1);
     } else if (a == "--min-margin") {
-      f.targets.min_margin = parse_number(a, value(), 0, 1);
+      f.targets.min_margin = parse_number(a, in.value(), 0, 1);
     } else if (a == "--detail") {
-      f.targets.detail = parse_number(a, value(), 0, 10);
+      f.targets.detail = parse_number(a, in.value(), 0, 10);
     } else if (a == "--popping") {
-      f.targets.popping = parse_number(a, value(), 0, 100);
+      f.targets.popping = parse_number(a, in.value(), 0, 100);
     } else if (!a.empty() && a[0] == '-') {
       throw UsageError("unknown option '" + a + "' for fidelity (try vdcloth fidelity --help)");
     } else {

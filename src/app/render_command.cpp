@@ -59,20 +59,16 @@ struct RenderArgs {
 RenderArgs parse_render_args(const std::vector<std::string>& args) {
   RenderArgs r;
   std::vector<std::string> positional;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
-    if (a == "--compare") r.compare = value();
-    else if (a == "--every") r.every = parse_positive_int(a, value());
-    else if (a == "--out") r.out = value();
-    else if (a == "--scale") r.scale = parse_number(a, value(), 0.05, 4);
+  for (ArgumentReader in(args); !in.done();) {
+    const std::string& a = in.next();
+    if (a == "--compare") r.compare = in.value();
+    else if (a == "--every") r.every = parse_positive_int(a, in.value());
+    else if (a == "--out") r.out = in.value();
+    else if (a == "--scale") r.scale = parse_number(a, in.value(), 0.05, 4);
     else if (a == "--wireframe") r.style.wireframe = true;
     else if (a == "--video") r.video = true;
     else if (a == "--colour" || a == "--color") {
-      const std::string& c = value();
+      const std::string& c = in.value();
       if (c != "garment" && c != "view") throw UsageError(a + " expects garment or view, got '" + c + "'");
       r.style.view_colours = c == "view";
     }

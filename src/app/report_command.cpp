@@ -50,15 +50,11 @@ struct ReportArgs {
 ReportArgs parse_report_args(const std::vector<std::string>& args) {
   ReportArgs r;
   std::vector<std::string> positional;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
-    if (a == "--compare") r.compare = value();
-    else if (a == "--every") r.every = parse_positive_int(a, value());
-    else if (a == "--out") r.out = value();
+  for (ArgumentReader in(args); !in.done();) {
+    const std::string& a = in.next();
+    if (a == "--compare") r.compare = in.value();
+    else if (a == "--every") r.every = parse_positive_int(a, in.value());
+    else if (a == "--out") r.out = in.value();
     else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for report (try vdcloth report --help)");
     else positional.push_back(a);
   }

@@ -75,26 +75,22 @@ struct Table1Args {
 
 Table1Args parse_table1_args(const std::vector<std::string>& args) {
   Table1Args r;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-      return args[++i];
-    };
-    if (a == "--frames") r.frames = parse_positive_int(a, value());
-    else if (a == "--fixed-frames") r.fixed_frames = parse_positive_int(a, value());
-    else if (a == "--out") r.out = value();
-    else if (a == "--threads") r.threads = parse_int_in(a, value(), 1, kMaxThreads);
-    else if (a == "--scenes") r.scenes = value();
-    else if (a == "--scene") r.only.push_back(value());
+  for (ArgumentReader in(args); !in.done();) {
+    const std::string& a = in.next();
+    if (a == "--frames") r.frames = parse_positive_int(a, in.value());
+    else if (a == "--fixed-frames") r.fixed_frames = parse_positive_int(a, in.value());
+    else if (a == "--out") r.out = in.value();
+    else if (a == "--threads") r.threads = parse_int_in(a, in.value(), 1, kMaxThreads);
+    else if (a == "--scenes") r.scenes = in.value();
+    else if (a == "--scene") r.only.push_back(in.value());
     else if (a == "--mode") {
-      const std::string& m = value();
+      const std::string& m = in.value();
       if (m != "fixed" && m != "adaptive" && m != "view") throw UsageError("--mode expects fixed, adaptive or view, got '" + m + "'");
       r.modes.push_back(m);
     } else if (a == "--tables-only") r.tables_only = true;
     else if (a == "--resume") r.resume = true;
     else if (a == "--mesh-every") {
-      const std::string& v = value();
+      const std::string& v = in.value();
       r.mesh_every = v == "0" ? 0 : parse_positive_int(a, v);
     } else throw UsageError("unknown option '" + a + "' of bench table1");
   }

@@ -155,7 +155,9 @@ TEST_F(ReportTest, TheReportOpensInABrowserAndShowsTheRuns) {
   EXPECT_TRUE(result["errors"].empty()) << result["errors"].dump();
   std::ifstream log(dir_ / "browser.log");
   for (std::string line; std::getline(log, line);) {
-    if (line.find(":CONSOLE") != std::string::npos) EXPECT_NE(line.find("GL Driver Message"), std::string::npos) << line;
+    if (line.find(":CONSOLE") != std::string::npos) {
+      EXPECT_NE(line.find("GL Driver Message"), std::string::npos) << line;
+    }
   }
 
   // The first frame drawn, with each run's meshes as written, its cloth covering the pixels the
