@@ -1,6 +1,7 @@
 #include "app/report_command.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -38,13 +39,14 @@ const char* kReportHelp =
     "options:\n"
     "  --compare DIR   a second run of the same scene (another mode, say): plotted beside it, and\n"
     "                  the frames both have drawn side by side\n"
-    "  --every N       every Nth frame that has meshes goes into the viewer (default: 1, all; the\n"
-    "                  frames take about 0.3 MB each a garment and body)\n"
+    "  --every N       every Nth frame that has meshes goes into the viewer (default: all of them,\n"
+    "                  or every Nth so that the report stays near 250 MB: a frame takes about a\n"
+    "                  third of its OBJ and PLY files' size)\n"
     "  --out DIR       output directory (default: RUN_DIR/report), replaced if it holds a report\n";
 
 struct ReportArgs {
   std::string run, compare, out;
-  int every = 1;
+  int every = 0;  // 0: chosen from the frames' size
 };
 
 ReportArgs parse_report_args(const std::vector<std::string>& args) {
@@ -75,6 +77,24 @@ const Library kLibraries[] = {
     {"libjs-three", "three/examples/js/controls/OrbitControls.js", "OrbitControls.js"},
     {"libjs-chart.js", "chart.js/chart.min.js", "chart.min.js"},
 };
+
+// The report's frames take about a third of their OBJ and PLY files (binary base64 against
+// text at the micrometre); without --every, frames are kept one in N to stay near this.
+constexpr double kReportBytesPerFileByte = 1.0 / 3.0;
+constexpr double kDefaultReportBytes = 250e6;
+
+// The bytes of a frame's mesh files (OBJ, and the PLY beside a cloth's).
+double frame_file_bytes(const FrameFiles& files) {
+  double bytes = 0;
+  for (const auto& [name, path] : files) {
+    std::error_code ec;
+    const auto obj = fs::file_size(path, ec);
+    bytes += ec ? 0.0 : static_cast<double>(obj);
+    const auto ply = fs::file_size(fs::path(path).replace_extension(".ply"), ec);
+    bytes += ec ? 0.0 : static_cast<double>(ply);
+  }
+  return bytes;
+}
 
 // A run's frames with meshes, none when it wrote none (--mesh-every 0): the report then has
 // plots and tables only.
@@ -171,8 +191,18 @@ int report_command(const std::vector<std::string>& args, std::ostream& out, cons
   }
   for (const auto& f : frames) frame_sets.push_back(&f);
   const std::vector<int> common = frames_in_common(frame_sets);
+  int every = r.every;
+  if (every == 0) {
+    double bytes = 0;
+    for (const int frame : common)
+      for (const auto& f : frames) bytes += kReportBytesPerFileByte * frame_file_bytes(f.at(frame));
+    every = std::max(1, static_cast<int>(std::ceil(bytes / kDefaultReportBytes)));
+    if (every > 1)
+      out << "vdcloth report: one frame in " << every << " (" << std::fixed << std::setprecision(0) << bytes / 1e6
+          << " MB for all of them); --every 1 keeps them all\n";
+  }
   std::vector<int> shown;
-  for (std::size_t k = 0; k < common.size(); k += static_cast<std::size_t>(r.every)) shown.push_back(common[k]);
+  for (std::size_t k = 0; k < common.size(); k += static_cast<std::size_t>(every)) shown.push_back(common[k]);
   if (!common.empty() && shown.back() != common.back()) shown.push_back(common.back());
 
   if (shown.empty())
