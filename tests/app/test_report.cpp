@@ -39,39 +39,6 @@ const char* kScene =
     R"( "garments": [{"name": "s", "mesh": {"grid": {"size": [1, 1], "cells": [6, 6]}}, "material": "cotton.json",)"
     R"( "handles": [{"uv": [[0, 1], [1, 1]]}]}]})";
 
-class ReportTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("vdcloth_report_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    write("cotton.json", R"({"name": "c", "density": 0.13, "stretch": {"warp": 5000, "weft": 3500, "shear": 300}, "bending": 1e-5})");
-    scene_ = write("scene.json", kScene);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-  int cli(std::vector<std::string> args) {
-    out_.str("");
-    err_.str("");
-    return run_cli(args, out_, err_, false);
-  }
-  // A run of the scene in `mode` into dir_/name.
-  std::string run(const std::string& mode, const std::string& name) {
-    const std::string out = (dir_ / name).string();
-    EXPECT_EQ(cli({"run", scene_, "--mode", mode, "--out", out, "--threads", "1"}), kExitOk) << err_.str();
-    return out;
-  }
-
-  fs::path dir_;
-  std::string scene_;
-  std::ostringstream out_, err_;
-};
-
 // Everything a program prints, and its exit status.
 struct Output {
   std::string text;
@@ -100,6 +67,56 @@ std::string unescape_html(std::string s) {
   }
   return s;
 }
+
+class ReportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("vdcloth_report_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    write("cotton.json", R"({"name": "c", "density": 0.13, "stretch": {"warp": 5000, "weft": 3500, "shear": 300}, "bending": 1e-5})");
+    scene_ = write("scene.json", kScene);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return (dir_ / name).string();
+  }
+  int cli(std::vector<std::string> args) {
+    out_.str("");
+    err_.str("");
+    return run_cli(args, out_, err_, false);
+  }
+  // A run of the scene in `mode` into dir_/name.
+  std::string run(const std::string& mode, const std::string& name) {
+    const std::string out = (dir_ / name).string();
+    EXPECT_EQ(cli({"run", scene_, "--mode", mode, "--out", out, "--threads", "1"}), kExitOk) << err_.str();
+    return out;
+  }
+
+  // What the report's page found when it checked itself (index.html#selftest) in the browser
+  // `name`; the browser's log in dir_/browser.log. Null (and a failure) when it did not finish.
+  json open_page(const std::string& name, const fs::path& page) {
+    const std::string command = name + " --no-sandbox --enable-unsafe-swiftshader --enable-logging=stderr --v=0 --user-data-dir='" +
+                                (dir_ / "browser").string() + "' --virtual-time-budget=30000 --dump-dom 'file://" +
+                                fs::absolute(page).string() + "#selftest' 2>'" + (dir_ / "browser.log").string() + "'";
+    const Output dom = capture(command);
+    EXPECT_EQ(dom.status, 0) << command;
+    const std::string open = "<pre id=\"selftest-result\">";
+    const std::size_t start = dom.text.find(open), end = dom.text.find("</pre>", start);
+    if (start == std::string::npos || end == std::string::npos) {
+      ADD_FAILURE() << "the page's check did not finish:\n" << dom.text.substr(0, 2000);
+      return nullptr;
+    }
+    return json::parse(unescape_html(dom.text.substr(start + open.size(), end - start - open.size())));
+  }
+
+  fs::path dir_;
+  std::string scene_;
+  std::ostringstream out_, err_;
+};
 
 // The vertices of each mesh of a written frame, from its OBJ ("v" lines).
 std::map<std::string, int> obj_vertices(const FrameFiles& files) {
@@ -140,15 +157,8 @@ TEST_F(ReportTest, TheReportOpensInABrowserAndShowsTheRuns) {
   ASSERT_TRUE(fs::exists(page));
   for (const char* lib : {"three.min.js", "OrbitControls.js", "chart.min.js"}) EXPECT_TRUE(fs::exists(fs::path(view) / "report" / "lib" / lib)) << lib;
 
-  const std::string command = name + " --no-sandbox --enable-unsafe-swiftshader --enable-logging=stderr --v=0 --user-data-dir='" +
-                              (dir_ / "browser").string() + "' --virtual-time-budget=30000 --dump-dom 'file://" +
-                              fs::absolute(page).string() + "#selftest' 2>'" + (dir_ / "browser.log").string() + "'";
-  const Output dom = capture(command);
-  ASSERT_EQ(dom.status, 0) << command;
-  const std::string open = "<pre id=\"selftest-result\">";
-  const std::size_t start = dom.text.find(open), end = dom.text.find("</pre>", start);
-  ASSERT_NE(start, std::string::npos) << "the page's check did not finish:\n" << dom.text.substr(0, 2000);
-  const json result = json::parse(unescape_html(dom.text.substr(start + open.size(), end - start - open.size())));
+  const json result = open_page(name, page);
+  ASSERT_TRUE(result.is_object());
 
   // No error in the page, nothing on the browser's console but its WebGL performance notes (the
   // check reads pixels back).
@@ -208,6 +218,13 @@ TEST_F(ReportTest, TheReportOpensInABrowserAndShowsTheRuns) {
   const std::string summary = result["tables"]["summary"];
   for (const char* says : {"view", "fixed", "done", "cores"}) EXPECT_NE(summary.find(says), std::string::npos) << says << " in\n" << summary;
   EXPECT_NE(result["tables"]["log"].get<std::string>().find("0 message(s)"), std::string::npos) << result["tables"]["log"];
+
+  // A frame script gone: the page says it could not show that frame.
+  fs::remove(fs::path(view) / "report" / "data" / "run0" / "0004.js");
+  const json broken = open_page(name, page);
+  ASSERT_FALSE(broken["errors"].empty());
+  EXPECT_NE(broken["errors"][0].get<std::string>().find("cannot load"), std::string::npos) << broken["errors"];
+  EXPECT_NE(broken["errors"][0].get<std::string>().find("data/run0/0004.js"), std::string::npos) << broken["errors"];
 }
 
 TEST_F(ReportTest, BadInputsExitTwoWithNothingWritten) {

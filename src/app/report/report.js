@@ -239,6 +239,10 @@ const vdcloth = (() => {
       if (!cameraData() && !state.framed) frameOrbitCamera();
       placeShotCamera(frame);
       drawAll();
+    }).catch((e) => {
+      // A frame script missing or broken: said on the page, and kept for the page's own check.
+      document.getElementById('viewer-note').textContent = 'Frame ' + frame + ' could not be shown: ' + e.message;
+      window.vdclothErrors.push(String(e.message));
     });
     return state.showing;
   }
