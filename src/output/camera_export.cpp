@@ -74,6 +74,10 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
   j["fov_x_degrees"] = fov_x;
   j["near"] = lens.near;
   j["far"] = lens.far;
+  j["sensor_height_mm"] = lens.sensor_height_mm;
+  j["focal_length_mm"] = lens.focal_length_mm();
+  if (lens.focus_distance > 0) j["depth_of_field"] = {{"focus_distance", lens.focus_distance}, {"f_stop", lens.f_stop}};
+  if (lens.shutter > 0) j["shutter"] = lens.shutter;
   j["rotation_order"] = "ZXY";
   j["frames"] = nlohmann::json::array();
   for (const CameraFrame& c : shot) {

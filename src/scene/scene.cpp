@@ -543,7 +543,7 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
 
 // The `camera` block: lens parameters and keyframes [{"time", "position", "target", "cut"}].
 CameraPath parse_camera(const JsonValue& j) {
-  j.only_keys({"fov", "width", "height", "near", "far", "up", "keys"});
+  j.only_keys({"fov", "width", "height", "near", "far", "up", "keys", "focus_distance", "f_stop", "sensor_height", "shutter"});
   Camera lens;
   lens.fov_y_degrees = j.positive_or("fov", lens.fov_y_degrees);
   if (lens.fov_y_degrees >= 180) j.at("fov").fail("must be below 180 degrees");
@@ -557,6 +557,15 @@ CameraPath parse_camera(const JsonValue& j) {
   if (lens.far <= lens.near) j.at("far").fail("must be beyond near");
   lens.up = j.vec3_or("up", lens.up);
   if (lens.up.norm() == 0) j.at("up").fail("must not be zero");
+  lens.focus_distance = j.non_negative_or("focus_distance", lens.focus_distance);
+  lens.f_stop = j.positive_or("f_stop", lens.f_stop);
+  if (lens.f_stop < 0.5 || lens.f_stop > 256) j.at("f_stop").fail("must be between 0.5 and 256");
+  lens.sensor_height_mm = j.positive_or("sensor_height", lens.sensor_height_mm);
+  if (lens.sensor_height_mm > 1000) j.at("sensor_height").fail("must be at most 1000 (millimetres)");
+  if (lens.focus_distance > 0 && lens.focus_distance <= 1e-3 * lens.focal_length_mm())
+    j.at("focus_distance").fail("must be beyond the focal length (" + std::to_string(lens.focal_length_mm()) + " mm), or 0 for no depth of field");
+  lens.shutter = j.non_negative_or("shutter", lens.shutter);
+  if (lens.shutter > 1) j.at("shutter").fail("must be at most 1 (the whole frame time)");
   std::vector<CameraKey> keys;
   const JsonValue list = j.at("keys");
   for (const JsonValue& k : list.items()) {
@@ -579,7 +588,8 @@ CameraPath parse_camera(const JsonValue& j) {
 // The `view` block: parameters of view-dependent sizing.
 ViewParams parse_view(const JsonValue& j) {
   j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "l_min", "l_max", "silhouette_threshold", "settle",
-               "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation"});
+               "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation", "defocus_scale",
+               "motion_blur_scale"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -601,6 +611,8 @@ ViewParams parse_view(const JsonValue& j) {
   p.occlusion_erosion = static_cast<int>(erosion);
   p.occlusion_depth = j.non_negative_or("occlusion_depth", p.occlusion_depth);
   p.motion_anticipation = j.boolean_or("motion_anticipation", p.motion_anticipation);
+  p.defocus_scale = j.non_negative_or("defocus_scale", p.defocus_scale);
+  p.motion_blur_scale = j.non_negative_or("motion_blur_scale", p.motion_blur_scale);
   return p;
 }
 

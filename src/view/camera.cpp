@@ -20,6 +20,17 @@ std::array<Vec3, 3> Camera::basis() const {
 
 double Camera::focal_pixels() const { return 0.5 * height / std::tan(0.5 * fov_y_degrees * M_PI / 180.0); }
 
+double Camera::focal_length_mm() const { return 0.5 * sensor_height_mm / std::tan(0.5 * fov_y_degrees * M_PI / 180.0); }
+
+// The thin-lens circle of confusion (e.g. Potmesil and Chakravarty 1981, eq. 1).
+double Camera::blur_circle_pixels(double depth) const {
+  if (focus_distance <= 0 || f_stop <= 0 || depth <= 0) return 0;
+  const double f = 1e-3 * focal_length_mm();  // m
+  if (focus_distance <= f) return 0;
+  const double on_sensor = (f / f_stop) * std::abs(depth - focus_distance) / depth * f / (focus_distance - f);  // m
+  return on_sensor / (1e-3 * sensor_height_mm) * height;
+}
+
 Vec2 Camera::project(const Vec3& x, double* depth) const {
   const auto [r, u, f] = basis();
   const Vec3 p = x - position;

@@ -17,10 +17,23 @@ struct Camera {
   double fov_y_degrees = 40;
   int width = 1920, height = 1080;  // pixels
   double near = 0.1, far = 100;     // m, along the view direction
+  // Depth of field, a thin lens (focus_distance 0: a pinhole, everything sharp): the distance in
+  // focus, the f-number, and the sensor's height, which with the field of view gives the focal
+  // length.
+  double focus_distance = 0;  // m, along the view direction
+  double f_stop = 2.8;
+  double sensor_height_mm = 24;
+  // Motion blur: how long the shutter is open, as a fraction of the frame time (0: no blur).
+  double shutter = 0;
 
   // Orthonormal view basis: right, true up, forward (towards the target).
   std::array<Vec3, 3> basis() const;
   double focal_pixels() const;  // pixels per unit of x/z at the image centre
+  double focal_length_mm() const;  // the lens's focal length, from the sensor's height and the field of view
+  // The diameter, in pixels, of the circle of confusion of a point at `depth` (m along the view
+  // direction): A |depth - d| / depth * f / (d - f) on the sensor (A = f / N the aperture, d the
+  // focus distance), in pixels of the image's height. 0 without depth of field.
+  double blur_circle_pixels(double depth) const;
   // Pixel coordinates (x right, y down, origin at the top-left corner) and depth of x.
   Vec2 project(const Vec3& x, double* depth = nullptr) const;
   // Jacobian of project at x: pixels per metre, 2x3 (x must be in front of the camera).

@@ -39,6 +39,11 @@ struct ViewParams {
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.
   bool motion_anticipation = true;
+  // The screen-space floor (l_min) of a visible face grows to this multiple of its blur circle
+  // when the camera has depth of field, and of how far its image moves while the shutter is
+  // open when the camera has motion blur: detail finer than the blur does not show. 0: off.
+  double defocus_scale = 1;
+  double motion_blur_scale = 1;
 };
 
 // How a face is seen at one instant.

@@ -2,6 +2,7 @@
 #include "view/view_sizing.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -24,7 +25,26 @@ Mat2 screen_space_bounds(const Mat2& m, const Mat23& projection_jacobian, const 
 }
 
 ViewSizing::ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads)
-    : path_(path), params_(params), time_(time), frame_time_(frame_time), threads_(threads) {}
+    : path_(path), params_(params), time_(time), frame_time_(frame_time), threads_(threads), now_(path.at(time)) {
+  const double open = now_.shutter * frame_time;
+  if (params_.motion_blur_scale > 0 && open > 0 && path.cuts_in(time, time + open).empty()) shutter_closes_ = path.at(time + open);
+}
+
+// Detail finer than the image's blur does not show: the blur circle of a thin lens, and the
+// streak of the face's image over the shutter's time (an extension of eqs. 5 to 8).
+double ViewSizing::screen_floor(const Vec3& centre, const Vec3& velocity) const {
+  double floor = params_.l_min;
+  double depth = 0;
+  const Vec2 at_open = now_.project(centre, &depth);
+  if (depth <= 0) return floor;
+  if (params_.defocus_scale > 0) floor = std::max(floor, params_.defocus_scale * now_.blur_circle_pixels(depth));
+  if (shutter_closes_) {
+    double depth_closed = 0;
+    const Vec2 at_close = shutter_closes_->project(centre + velocity * (now_.shutter * frame_time_), &depth_closed);
+    if (depth_closed > 0) floor = std::max(floor, params_.motion_blur_scale * (at_close - at_open).norm());
+  }
+  return floor;
+}
 
 double ViewSizing::anticipated_factor(const Mesh& mesh, FaceId f, const AnticipationWindow& window, const std::vector<DepthImage>* occluders) const {
   const Vec3 &a = mesh.x(mesh.face_node(f, 0)), &b = mesh.x(mesh.face_node(f, 1)), &c = mesh.x(mesh.face_node(f, 2));
@@ -65,12 +85,12 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
 }
 
 void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const {
-  const Camera now = path_.at(time_);
+  const bool blurs = (params_.defocus_scale > 0 && now_.focus_distance > 0) || shutter_closes_;
   for (FaceId f : mesh.faces()) {
     const double v = factor_[static_cast<std::size_t>(f.idx)];
     Mat2 m = v * v * face_sizing[f];  // eq. 2, on the shape only:
     if (v < 1) m = tensor_max(m, motion[static_cast<std::size_t>(f.idx)]);
-    if (visible_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0)) {
+    if (visible_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0 || blurs)) {
       const auto& vs = mesh.face_verts(f);
       Mat2 du;
       du.col(0) = mesh.u(vs[1]) - mesh.u(vs[0]);
@@ -80,7 +100,13 @@ void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attri
       dx.col(0) = mesh.x(mesh.face_node(f, 1)) - x0;
       dx.col(1) = mesh.x(mesh.face_node(f, 2)) - x0;
       const Vec3 centre = (x0 + mesh.x(mesh.face_node(f, 1)) + mesh.x(mesh.face_node(f, 2))) / 3.0;
-      m = screen_space_bounds(m, now.projection_jacobian(centre), dx * du.inverse(), params_.l_min, params_.l_max);
+      double l_min = params_.l_min;
+      if (blurs) {
+        const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
+        l_min = screen_floor(centre, velocity);
+      }
+      const double l_max = params_.l_max > 0 ? std::max(params_.l_max, l_min) : 0.0;
+      m = screen_space_bounds(m, now_.projection_jacobian(centre), dx * du.inverse(), l_min, l_max);
     }
     face_sizing[f] = m;
   }

@@ -11,6 +11,7 @@
 // drape on the body with nothing coarsened for facing away or being out of frame (the screen-
 // space bounds still apply).
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "remesh/sizing.hpp"
@@ -36,6 +37,11 @@ class ViewSizing final : public FaceSizingModifier {
   // and not empty, are occlusion_images() of the same window (the back-face rule looks).
   void evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders = nullptr);
   void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const override;
+  // The screen-space floor, in pixels, of a visible face whose centre is at `centre` moving at
+  // `velocity` now: l_min, raised to defocus_scale times its blur circle when the camera has
+  // depth of field and to motion_blur_scale times how far its image moves while the shutter is
+  // open when the camera has motion blur (the cloth's motion and the camera's; none across a cut).
+  double screen_floor(const Vec3& centre, const Vec3& velocity) const;
   const std::vector<double>& factors() const { return factor_; }  // by face index
   const ViewCounts& counts() const { return counts_; }
 
@@ -47,6 +53,8 @@ class ViewSizing final : public FaceSizingModifier {
   int threads_;
   std::vector<double> factor_;
   std::vector<char> visible_;  // by face index: in frame and facing the camera now
+  Camera now_;                 // the camera at time_
+  std::optional<Camera> shutter_closes_;  // the camera when the shutter closes (motion blur)
   ViewCounts counts_;
 };
 

@@ -29,10 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// A sheet hanging above a ball, seen by a camera that cuts at 0.08 s (frame 2).
+// A sheet hanging above a ball, seen by a camera that cuts at 0.08 s (frame 2), with depth of
+// field and motion blur.
 const char* kScene =
     R"({"frames": 4, "substeps": 2, "remeshing": {"size": [0.06, 0.5]},)"
-    R"( "camera": {"fov": 40, "width": 320, "height": 240, "keys": [)"
+    R"( "camera": {"fov": 40, "width": 320, "height": 240, "focus_distance": 1.5, "f_stop": 4, "shutter": 0.5, "keys": [)"
     R"({"time": 0, "position": [0.5, 0.6, 1.6], "target": [0.5, 0.0, -0.5]},)"
     R"({"time": 0.08, "position": [0.6, 0.9, 1.4], "target": [0.5, 0.0, -0.5], "cut": true}]},)"
     R"( "obstacles": [{"name": "ball", "mesh": {"sphere": {"radius": 0.2, "subdivisions": 2}}, "transform": {"translate": [0.5, -0.5, -0.5]}}],)"
@@ -307,7 +308,7 @@ TEST_F(ReportTest, ARunKeepsItsWarningsInLogTxt) {
 // The Blender add-on (tools/blender/vdcloth_import.py) loads a run into Debian's Blender, run
 // headless: tools/blender/check_import.py finds every object's vertex and face counts at every
 // frame (counted from the OBJ's lines), the pattern UVs, the view factors and the camera (with
-// its cut) as the run wrote them.
+// its cut, its focus and its lens) as the run wrote them.
 TEST_F(ReportTest, BlenderLoadsTheRunAsItWasWritten) {
   ASSERT_EQ(capture("command -v blender >/dev/null 2>&1").status, 0) << "no blender: scripts/install-deps.sh installs it";
   const std::string view = run("view", "view");

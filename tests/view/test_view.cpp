@@ -214,6 +214,73 @@ TEST(ScreenSpaceBounds, NoVisibleEdgeLongerThanLMaxPixels) {
   }
 }
 
+// A thin lens of 40 degrees on a 24 mm sensor: f = 12 mm / tan 20 deg = 32.970 mm; at f/2 focused
+// at 2 m, a point at 4 m blurs into A |4 - 2| / 4 * f / (2 m - f) = 0.13815 mm on the sensor,
+// 6.2169 of 1080 pixels; at 1 m twice that; in focus, nothing.
+TEST(Camera, BlurCircleIsTheThinLensCircleOfConfusion) {
+  Camera c = front_camera();
+  c.height = 1080;
+  c.width = 1920;
+  EXPECT_NEAR(c.focal_length_mm(), 32.969729, 1e-6);
+  EXPECT_EQ(c.blur_circle_pixels(4), 0.0) << "a pinhole";
+  c.focus_distance = 2;
+  c.f_stop = 2;
+  EXPECT_NEAR(c.blur_circle_pixels(4), 6.2168764, 1e-6);
+  EXPECT_NEAR(c.blur_circle_pixels(1), 12.4337528, 1e-6);
+  EXPECT_EQ(c.blur_circle_pixels(2), 0.0);
+  c.f_stop = 4;  // half the aperture, half the circle
+  EXPECT_NEAR(c.blur_circle_pixels(4), 6.2168764 / 2, 1e-6);
+}
+
+// The screen-space floor of a visible face: l_min, the blur circle's diameter when the camera
+// has depth of field, the streak of the face's image while the shutter is open when it has
+// motion blur (here 1 m/s across the view at 4 m for half a 0.04 s frame: fp 0.02 / 4 = 7.4182
+// pixels, fp = 540 / tan 20 deg); each off at scale 0; no streak across a cut. The sizing a
+// visible face gets is bounded at that floor: at depth z, floor z / fp metres.
+TEST(ViewSizing, DepthOfFieldAndMotionBlurRaiseTheScreenFloor) {
+  Camera lens = front_camera();
+  lens.height = 1080;
+  lens.width = 1920;
+  lens.position = Vec3(0.1, 4, -0.1);
+  lens.target = Vec3(0.1, 0, -0.1);
+  lens.up = Vec3(0, 0, -1);
+  const Vec3 centre(0.1, 0, -0.1), across(1, 0, 0);
+  const double fp = 540 / std::tan(20 * M_PI / 180);
+  ViewParams p;  // l_min 4
+  {
+    const CameraPath path(lens, {{0.0, lens.position, lens.target, false}});
+    EXPECT_EQ(ViewSizing(path, p, 0.2, 0.04).screen_floor(centre, across), p.l_min) << "pinhole, no shutter";
+  }
+  Camera blurred = lens;
+  blurred.focus_distance = 2;
+  blurred.f_stop = 2;
+  blurred.shutter = 0.5;
+  const CameraPath path(blurred, {{0.0, lens.position, lens.target, false}});
+  EXPECT_NEAR(ViewSizing(path, p, 0.2, 0.04).screen_floor(centre, Vec3::Zero()), 6.2168764, 1e-6) << "defocus";
+  EXPECT_NEAR(ViewSizing(path, p, 0.2, 0.04).screen_floor(centre, 2 * across), fp * 2 * 0.02 / 4, 1e-6) << "motion blur";
+  ViewParams off = p;
+  off.defocus_scale = 0;
+  EXPECT_NEAR(ViewSizing(path, off, 0.2, 0.04).screen_floor(centre, across), fp * 0.02 / 4, 1e-6);
+  off.motion_blur_scale = 0;
+  EXPECT_EQ(ViewSizing(path, off, 0.2, 0.04).screen_floor(centre, 2 * across), p.l_min);
+  const CameraPath cut(blurred, {{0.0, lens.position, lens.target, false}, {0.21, lens.position + Vec3(0, 1, 0), lens.target, true}});
+  EXPECT_NEAR(ViewSizing(cut, p, 0.2, 0.04).screen_floor(centre, 2 * across), 6.2168764, 1e-6) << "the shutter spans a cut";
+
+  // Millimetre sizing on a sheet facing the camera comes out at the floor: 6.2169 pixels at 4 m.
+  Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y, towards the camera
+  ViewSizing view(path, p, 0.2, 0.04);
+  view.evaluate(m);
+  auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
+  for (FaceId f : m.faces()) sizing[f] = Mat2::Identity() / (0.001 * 0.001);
+  const std::vector<Mat2> motion(static_cast<std::size_t>(m.face_capacity()), Mat2::Zero());
+  view.modify(m, motion, sizing);
+  ASSERT_EQ(view.counts().visible, 2);
+  for (FaceId f : m.faces()) {
+    Eigen::SelfAdjointEigenSolver<Mat2> eig(sizing[f]);
+    EXPECT_NEAR(1 / std::sqrt(eig.eigenvalues()[1]), 6.2168764 * 4 / fp, 0.01 * 6.2168764 * 4 / fp);
+  }
+}
+
 TEST(CameraPath, InterpolatesWithinAShotAndJumpsAtACut) {
   Camera lens = front_camera();
   std::vector<CameraKey> keys{{0.0, Vec3(0, 0, 5), Vec3::Zero(), false}, {1.0, Vec3(2, 0, 5), Vec3::Zero(), false},

@@ -81,6 +81,14 @@ if os.path.exists(camera_path):
     with open(camera_path) as file:
         frames = json.load(file)["frames"]
     camera = scene.camera
+    with open(camera_path) as file:
+        lens = json.load(file)
+    dof = lens.get("depth_of_field")
+    check(camera.data.dof.use_dof == bool(dof), "camera depth of field %s, camera.json %s" % (camera.data.dof.use_dof, dof))
+    if dof:
+        check(abs(camera.data.dof.focus_distance - dof["focus_distance"]) < 1e-5 and abs(camera.data.dof.aperture_fstop - dof["f_stop"]) < 1e-5,
+              "camera focus %g m at f/%g, camera.json %s" % (camera.data.dof.focus_distance, camera.data.dof.aperture_fstop, dof))
+        check(abs(camera.data.lens - lens["focal_length_mm"]) < 1e-3, "camera lens %g mm, camera.json %g" % (camera.data.lens, lens["focal_length_mm"]))
     for frame in frames:
         scene.frame_set(frame["frame"])
         m = camera.matrix_world

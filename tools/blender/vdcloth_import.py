@@ -121,8 +121,18 @@ def import_camera(run_dir, scene, collection):
         cam = json.load(f)
     data = bpy.data.cameras.new("shot")
     data.sensor_fit = "VERTICAL"
+    if "sensor_height_mm" in cam:
+        data.sensor_height = cam["sensor_height_mm"]
     data.angle_y = math.radians(cam["fov_y_degrees"])
     data.clip_start, data.clip_end = cam["near"], cam["far"]
+    dof = cam.get("depth_of_field")
+    if dof:
+        data.dof.use_dof = True
+        data.dof.focus_distance = dof["focus_distance"]
+        data.dof.aperture_fstop = dof["f_stop"]
+    if cam.get("shutter"):
+        scene.render.use_motion_blur = True
+        scene.render.motion_blur_shutter = cam["shutter"]
     obj = bpy.data.objects.new("shot", data)
     collection.objects.link(obj)
     obj.rotation_mode = "XYZ"
