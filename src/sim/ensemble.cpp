@@ -28,6 +28,8 @@ void accumulate(FrameStats& t, const FrameStats& p) {
   t.visible_faces += p.visible_faces;
   t.back_facing_faces += p.back_facing_faces;
   t.out_of_frame_faces += p.out_of_frame_faces;
+  t.defocused_faces += p.defocused_faces;
+  t.blurred_faces += p.blurred_faces;
   t.view_seconds += p.view_seconds;
   t.impacts += p.impacts;
   t.collision_iterations += p.collision_iterations;

@@ -186,6 +186,8 @@ void Simulation::remesh_garments(FrameStats& stats) {
       stats.visible_faces += views[gi]->counts().visible;
       stats.back_facing_faces += views[gi]->counts().back_facing;
       stats.out_of_frame_faces += views[gi]->counts().out_of_frame;
+      stats.defocused_faces += views[gi]->counts().defocused;
+      stats.blurred_faces += views[gi]->counts().blurred;
       stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
     }
   }

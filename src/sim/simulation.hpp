@@ -54,6 +54,7 @@ struct FrameStats {
   // View mode: faces at the frame's start by how the camera sees them, and the time taken by
   // the view factors (part of remesh_seconds).
   int visible_faces = 0, back_facing_faces = 0, out_of_frame_faces = 0;
+  int defocused_faces = 0, blurred_faces = 0;  // visible, their screen-space floor set by the lens's blur
   double view_seconds = 0;
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
   int velocity_clamps = 0;  // steps whose velocity changes were clamped as a last resort

@@ -28,21 +28,27 @@ ViewSizing::ViewSizing(const CameraPath& path, const ViewParams& params, double 
     : path_(path), params_(params), time_(time), frame_time_(frame_time), threads_(threads), now_(path.at(time)) {
   const double open = now_.shutter * frame_time;
   if (params_.motion_blur_scale > 0 && open > 0 && path.cuts_in(time, time + open).empty()) shutter_closes_ = path.at(time + open);
+  lens_blurs_ = (params_.defocus_scale > 0 && now_.focus_distance > 0) || shutter_closes_.has_value();
 }
 
 // Detail finer than the image's blur does not show: the blur circle of a thin lens, and the
 // streak of the face's image over the shutter's time (an extension of eqs. 5 to 8).
-double ViewSizing::screen_floor(const Vec3& centre, const Vec3& velocity) const {
+double ViewSizing::screen_floor(const Vec3& centre, const Vec3& velocity, FloorSetBy* set_by) const {
   double floor = params_.l_min;
+  FloorSetBy by = FloorSetBy::l_min;
   double depth = 0;
   const Vec2 at_open = now_.project(centre, &depth);
-  if (depth <= 0) return floor;
-  if (params_.defocus_scale > 0) floor = std::max(floor, params_.defocus_scale * now_.blur_circle_pixels(depth));
-  if (shutter_closes_) {
+  if (depth > 0 && params_.defocus_scale > 0) {
+    const double defocus = params_.defocus_scale * now_.blur_circle_pixels(depth);
+    if (defocus > floor) floor = defocus, by = FloorSetBy::defocus;
+  }
+  if (depth > 0 && shutter_closes_) {
     double depth_closed = 0;
     const Vec2 at_close = shutter_closes_->project(centre + velocity * (now_.shutter * frame_time_), &depth_closed);
-    if (depth_closed > 0) floor = std::max(floor, params_.motion_blur_scale * (at_close - at_open).norm());
+    const double streak = depth_closed > 0 ? params_.motion_blur_scale * (at_close - at_open).norm() : 0.0;
+    if (streak > floor) floor = streak, by = FloorSetBy::motion_blur;
   }
+  if (set_by) *set_by = by;
   return floor;
 }
 
@@ -65,6 +71,7 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   std::vector<FaceId> faces;
   for (FaceId f : mesh.faces()) faces.push_back(f);
   std::vector<char> kind(faces.size(), 0);  // 0 visible, 1 back-facing, 2 out of frame
+  std::vector<FloorSetBy> floor_by(lens_blurs_ ? faces.size() : 0, FloorSetBy::l_min);
   const auto n = static_cast<int64_t>(faces.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (int64_t i = 0; i < n; ++i) {
@@ -73,6 +80,10 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     const FaceView view = face_view(window.frusta.front(), a, b, c, params_, occluders != nullptr ? &occluders->front() : nullptr);
     kind[static_cast<std::size_t>(i)] = view.distance > 0 ? 2 : view.front ? 0 : 1;
     visible_[static_cast<std::size_t>(f.idx)] = kind[static_cast<std::size_t>(i)] == 0;
+    if (lens_blurs_ && kind[static_cast<std::size_t>(i)] == 0) {
+      const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
+      screen_floor((a + b + c) / 3.0, velocity, &floor_by[static_cast<std::size_t>(i)]);
+    }
     factor_[static_cast<std::size_t>(f.idx)] =
         view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
   }
@@ -81,16 +92,19 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     else if (k == 1) ++counts_.back_facing;
     else ++counts_.out_of_frame;
   }
+  for (FloorSetBy by : floor_by) {
+    counts_.defocused += by == FloorSetBy::defocus;
+    counts_.blurred += by == FloorSetBy::motion_blur;
+  }
   resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
 }
 
 void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const {
-  const bool blurs = (params_.defocus_scale > 0 && now_.focus_distance > 0) || shutter_closes_;
   for (FaceId f : mesh.faces()) {
     const double v = factor_[static_cast<std::size_t>(f.idx)];
     Mat2 m = v * v * face_sizing[f];  // eq. 2, on the shape only:
     if (v < 1) m = tensor_max(m, motion[static_cast<std::size_t>(f.idx)]);
-    if (visible_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0 || blurs)) {
+    if (visible_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0 || lens_blurs_)) {
       const auto& vs = mesh.face_verts(f);
       Mat2 du;
       du.col(0) = mesh.u(vs[1]) - mesh.u(vs[0]);
@@ -101,7 +115,7 @@ void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attri
       dx.col(1) = mesh.x(mesh.face_node(f, 2)) - x0;
       const Vec3 centre = (x0 + mesh.x(mesh.face_node(f, 1)) + mesh.x(mesh.face_node(f, 2))) / 3.0;
       double l_min = params_.l_min;
-      if (blurs) {
+      if (lens_blurs_) {
         const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
         l_min = screen_floor(centre, velocity);
       }

@@ -28,7 +28,12 @@ struct ViewCounts {
   int visible = 0;       // in frame, outer side towards the camera
   int back_facing = 0;   // in frame, outer side away (and hidden, with occluders)
   int out_of_frame = 0;  // not in frame
+  int defocused = 0;     // visible, the screen-space floor set by the blur circle
+  int blurred = 0;       // visible, the floor set by motion blur
 };
+
+// What set a visible face's screen-space floor.
+enum class FloorSetBy { l_min, defocus, motion_blur };
 
 class ViewSizing final : public FaceSizingModifier {
  public:
@@ -41,7 +46,7 @@ class ViewSizing final : public FaceSizingModifier {
   // `velocity` now: l_min, raised to defocus_scale times its blur circle when the camera has
   // depth of field and to motion_blur_scale times how far its image moves while the shutter is
   // open when the camera has motion blur (the cloth's motion and the camera's; none across a cut).
-  double screen_floor(const Vec3& centre, const Vec3& velocity) const;
+  double screen_floor(const Vec3& centre, const Vec3& velocity, FloorSetBy* set_by = nullptr) const;
   const std::vector<double>& factors() const { return factor_; }  // by face index
   const ViewCounts& counts() const { return counts_; }
 
@@ -55,6 +60,7 @@ class ViewSizing final : public FaceSizingModifier {
   std::vector<char> visible_;  // by face index: in frame and facing the camera now
   Camera now_;                 // the camera at time_
   std::optional<Camera> shutter_closes_;  // the camera when the shutter closes (motion blur)
+  bool lens_blurs_ = false;               // depth of field or motion blur may raise the floor
   ViewCounts counts_;
 };
 

@@ -275,10 +275,23 @@ TEST(ViewSizing, DepthOfFieldAndMotionBlurRaiseTheScreenFloor) {
   const std::vector<Mat2> motion(static_cast<std::size_t>(m.face_capacity()), Mat2::Zero());
   view.modify(m, motion, sizing);
   ASSERT_EQ(view.counts().visible, 2);
+  EXPECT_EQ(view.counts().defocused, 2) << "the sheet at rest: its floor is the blur circle";
+  EXPECT_EQ(view.counts().blurred, 0);
   for (FaceId f : m.faces()) {
     Eigen::SelfAdjointEigenSolver<Mat2> eig(sizing[f]);
     EXPECT_NEAR(1 / std::sqrt(eig.eigenvalues()[1]), 6.2168764 * 4 / fp, 0.01 * 6.2168764 * 4 / fp);
   }
+  // Moving at 2 m/s across the view its streak (14.8 pixels) sets the floor; at rest with the
+  // lens a pinhole and the shutter closed, l_min does.
+  for (NodeId n : m.nodes()) m.v(n) = 2 * across;
+  ViewSizing moving(path, p, 0.2, 0.04);
+  moving.evaluate(m);
+  EXPECT_EQ(moving.counts().blurred, 2);
+  EXPECT_EQ(moving.counts().defocused, 0);
+  const CameraPath pinhole(lens, {{0.0, lens.position, lens.target, false}});
+  ViewSizing sharp(pinhole, p, 0.2, 0.04);
+  sharp.evaluate(m);
+  EXPECT_EQ(sharp.counts().blurred + sharp.counts().defocused, 0);
 }
 
 TEST(CameraPath, InterpolatesWithinAShotAndJumpsAtACut) {
