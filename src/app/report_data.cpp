@@ -3,6 +3,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -47,6 +48,15 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
+// A stats.csv cell: a number, or null for "nan" and "inf" (a run that failed part-way may have
+// written them in its last row, and its report is the one most wanted).
+json stats_cell(const std::string& cell, const std::string& path, int line) {
+  std::string lower;
+  for (const char c : cell) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == "nan" || lower == "-nan" || lower == "inf" || lower == "-inf" || lower == "+inf") return nullptr;
+  return parse_text_number(cell, path, line);
+}
+
 // stats.csv as {column: [numbers]}: every row as wide as the header, every cell a number.
 json read_stats_columns(const std::string& path) {
   const std::vector<std::string> lines = lines_of(read_input_text(path, kMaxTableBytes, "CSV"));
@@ -61,7 +71,7 @@ json read_stats_columns(const std::string& path) {
     const std::vector<std::string> cells = split(lines[k], ',');
     if (cells.size() != names.size())
       throw InputError(path, line_place(line), std::to_string(cells.size()) + " cells where the header names " + std::to_string(names.size()));
-    for (std::size_t c = 0; c < cells.size(); ++c) columns[names[c]].push_back(parse_text_number(cells[c], path, line));
+    for (std::size_t c = 0; c < cells.size(); ++c) columns[names[c]].push_back(stats_cell(cells[c], path, line));
   }
   return columns;
 }

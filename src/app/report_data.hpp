@@ -13,7 +13,7 @@
 namespace vdc {
 
 // The run in `run_dir` as the page reads it: "label" (the directory as given), "summary",
-// "stats" (each stats.csv column as an array of numbers), "camera" (or null), "check" (status and
+// "stats" (each stats.csv column as an array of numbers, null for nan or inf), "camera" (or null), "check" (status and
 // rows of vdcloth check, or null), "log" (log.txt's lines, or null). Throws InputError naming the
 // file, the place and the problem when summary.json or stats.csv is missing or malformed.
 nlohmann::json read_run_record(const std::string& run_dir);

@@ -321,6 +321,25 @@ TEST_F(ReportTest, BlenderLoadsTheRunAsItWasWritten) {
 
 }
 
+// A run's record: stats.csv's columns as numbers (nan and inf, which a failed run's last row
+// may hold, as null), its log's lines, no check or camera when the run has none.
+TEST(ReportData, ARunsRecordHoldsItsTables) {
+  const fs::path dir = fs::temp_directory_path() / ("vdcloth_record_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << R"({"name": "s", "mode": "view"})";
+  std::ofstream(dir / "stats.csv") << "frame,faces,kinetic_energy\n1,12,0.5\n2,14,nan\n3,16,-inf\n";
+  std::ofstream(dir / "log.txt") << "frame 2: something\nframe 3: more\n";
+  const json record = read_run_record(dir.string());
+  EXPECT_EQ(record["stats"]["frame"], json({1, 2, 3}));
+  EXPECT_EQ(record["stats"]["faces"], json({12, 14, 16}));
+  EXPECT_EQ(record["stats"]["kinetic_energy"], json({0.5, nullptr, nullptr}));
+  EXPECT_EQ(record["log"], json({"frame 2: something", "frame 3: more"}));
+  EXPECT_TRUE(record["check"].is_null());
+  EXPECT_TRUE(record["camera"].is_null());
+  EXPECT_EQ(record["summary"]["mode"], "view");
+  fs::remove_all(dir);
+}
+
 TEST(ReportData, Base64IsRfc4648) {
   // RFC 4648, section 10.
   EXPECT_EQ(base64(""), "");
