@@ -99,8 +99,9 @@ class ReportTest : public ::testing::Test {
 
   // What the report's page found when it checked itself (index.html#selftest) in the browser
   // `name`; the browser's log in dir_/browser.log. Null (and a failure) when it did not finish.
+  // Root in a container: no sandbox, and shared memory in /tmp rather than a small /dev/shm.
   json open_page(const std::string& name, const fs::path& page) {
-    const std::string command = name + " --no-sandbox --enable-unsafe-swiftshader --enable-logging=stderr --v=0 --user-data-dir='" +
+    const std::string command = name + " --no-sandbox --disable-dev-shm-usage --enable-unsafe-swiftshader --enable-logging=stderr --v=0 --user-data-dir='" +
                                 (dir_ / "browser").string() + "' --virtual-time-budget=30000 --dump-dom 'file://" +
                                 fs::absolute(page).string() + "#selftest' 2>'" + (dir_ / "browser.log").string() + "'";
     const Output dom = capture(command);
