@@ -2,6 +2,7 @@
 #include "io/ply.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <vector>
 
@@ -12,16 +13,18 @@
 
 namespace vdc {
 
-bool write_ply_with_face_values(const Mesh& mesh, const std::string& path, const std::string& name, const std::string& attribute,
-                                int decimals) {
+bool write_ply_with_face_values(const Mesh& mesh, const std::string& path, const std::vector<PlyFaceProperty>& properties, int decimals) {
   TextFile out(path);
   if (!out.ok()) return false;
-  const auto& value = mesh.face_attrs().get<double>(attribute);
+  std::vector<const Attribute<FaceTag, double>*> values;
+  for (const PlyFaceProperty& p : properties) values.push_back(&mesh.face_attrs().get<double>(p.attribute));
   std::vector<int32_t> index(static_cast<std::size_t>(mesh.node_capacity()), -1);
   int32_t n = 0;
   for (NodeId v : mesh.nodes()) index[static_cast<std::size_t>(v.idx)] = n++;
   out.text("ply\nformat ascii 1.0\nelement vertex ").integer(n).text("\nproperty double x\nproperty double y\nproperty double z\n");
-  out.text("element face ").integer(mesh.num_faces()).text("\nproperty list uchar int vertex_indices\nproperty float ").text(name).text("\nend_header\n");
+  out.text("element face ").integer(mesh.num_faces()).text("\nproperty list uchar int vertex_indices\n");
+  for (const PlyFaceProperty& p : properties) out.text(p.whole ? "property uchar " : "property float ").text(p.name).text("\n");
+  out.text("end_header\n");
   for (NodeId v : mesh.nodes()) {
     const Vec3& x = mesh.x(v);
     out.fixed(x.x(), decimals).text(" ").fixed(x.y(), decimals).text(" ").fixed(x.z(), decimals).text("\n");
@@ -29,7 +32,12 @@ bool write_ply_with_face_values(const Mesh& mesh, const std::string& path, const
   for (FaceId f : mesh.faces()) {
     out.text("3");
     for (int k = 0; k < 3; ++k) out.text(" ").integer(index[static_cast<std::size_t>(mesh.face_node(f, k).idx)]);
-    out.text(" ").number(value[f], 6).text("\n");
+    for (std::size_t p = 0; p < properties.size(); ++p) {
+      const double v = (*values[p])[f];
+      if (properties[p].whole) out.text(" ").integer(static_cast<int64_t>(std::clamp(std::round(v), 0.0, 255.0)));
+      else out.text(" ").number(v, 6);
+    }
+    out.text("\n");
   }
   return out.close();
 }
@@ -39,6 +47,7 @@ namespace {
 // The largest PLY read: a mesh of some 20 million faces.
 constexpr std::uintmax_t kMaxPlyBytes = std::uintmax_t{1} << 30;
 constexpr int64_t kMaxElements = int64_t{1} << 28;
+constexpr std::size_t kMaxFaceProperties = 8;
 
 std::vector<std::string> tokens_of(const std::string& line) {
   std::istringstream in(line);
@@ -78,10 +87,15 @@ PlyFaceValues read_ply_with_face_values(const std::string& path) {
   const int64_t faces = parse_whole_number(t[2], kMaxElements, "face count", path, line);
   t = next();
   if (t.size() != 5 || t[0] != "property" || t[1] != "list" || t[4] != "vertex_indices") fail("expected 'property list uchar int vertex_indices'");
-  t = next();
-  if (t.size() != 3 || t[0] != "property" || t[1] == "list") fail("expected one scalar face property after vertex_indices");
-  ply.name = t[2];
-  if (next() != std::vector<std::string>{"end_header"}) fail("expected 'end_header' after the face's one property");
+  std::vector<std::string> names;
+  for (t = next(); t != std::vector<std::string>{"end_header"}; t = next()) {
+    if (t.size() != 3 || t[0] != "property" || t[1] == "list") fail("expected a scalar face property or 'end_header'");
+    if (std::find(names.begin(), names.end(), t[2]) != names.end()) fail("the face property '" + t[2] + "' twice");
+    if (names.size() == kMaxFaceProperties) fail("more than " + std::to_string(kMaxFaceProperties) + " face properties");
+    names.push_back(t[2]);
+  }
+  if (names.empty()) fail("expected a scalar face property after vertex_indices");
+  ply.name = names.front();
   // Reserved as far as the file can hold them (a vertex line has at least 6 bytes, a face line
   // 10), not as far as a header may claim.
   ply.positions.reserve(std::min(static_cast<std::size_t>(vertices), text.size() / 6));
@@ -94,12 +108,14 @@ PlyFaceValues read_ply_with_face_values(const std::string& path) {
   ply.values.reserve(ply.faces.capacity());
   for (int64_t i = 0; i < faces; ++i) {
     t = next();
-    if (t.size() != 5 || t[0] != "3") fail("a face needs '3', three vertex indices and its value");
+    if (t.size() != 4 + names.size() || t[0] != "3")
+      fail("a face needs '3', three vertex indices and its " + std::to_string(names.size()) + " value(s)");
     std::array<int32_t, 3> face{};
     for (int k = 0; k < 3; ++k)
       face[static_cast<std::size_t>(k)] = static_cast<int32_t>(parse_whole_number(t[static_cast<std::size_t>(k) + 1], vertices - 1, "vertex index", path, line));
     ply.faces.push_back(face);
     ply.values.push_back(parse_text_number(t[4], path, line));
+    for (std::size_t p = 1; p < names.size(); ++p) ply.more[names[p]].push_back(parse_text_number(t[4 + p], path, line));
   }
   while (std::getline(in, raw)) {
     ++line;

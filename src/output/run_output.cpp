@@ -154,9 +154,11 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
       const std::string& name = scene.garments[g].name;
       const Mesh& mesh = part->garment_mesh(g);
       if (!write_obj(mesh, frame_file(dir_, "cloth", name, frame), ObjWriting{true, kFrameDecimals, true})) throw OutputError(frame_file(dir_, "cloth", name, frame), "cannot write");
-      // View mode: each garment's faces with their view factors, beside the OBJ.
+      // View mode: each garment's faces with their view factors and what set them, beside the OBJ.
+      std::vector<PlyFaceProperty> view{{"view", kViewFactorAttr}};
+      if (mesh.face_attrs().has(kViewReasonAttr)) view.push_back({"reason", kViewReasonAttr, true});
       if (mesh.face_attrs().has(kViewFactorAttr) &&
-          !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), "view", kViewFactorAttr, kFrameDecimals))
+          !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), view, kFrameDecimals))
         throw OutputError(frame_file(dir_, "cloth", name, frame, ".ply"), "cannot write");
     }
     // Obstacles of no group are in every part: written once, from the first.

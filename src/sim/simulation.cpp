@@ -229,7 +229,11 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
     Mesh& mesh = garments_[gi];
     if (views[gi]) {
       auto& factor = mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
-      for (FaceId f : mesh.faces()) factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
+      auto& reason = mesh.face_attrs().get_or_add<double>(kViewReasonAttr, 0.0);
+      for (FaceId f : mesh.faces()) {
+        factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
+        reason[f] = static_cast<double>(views[gi]->reasons()[static_cast<std::size_t>(f.idx)]);
+      }
     }
     compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
     if (views[gi]) {

@@ -15,6 +15,11 @@ namespace vdc {
 // Face attribute (double) holding each face's view factor in view mode (Koh et al. 2014, eq. 4
 // after silhouette resampling), carried through remeshing to the frame's output.
 inline constexpr const char* kViewFactorAttr = "view_factor";
+// Face attribute: what set the face's resolution at the last view evaluation (ViewReason).
+inline constexpr const char* kViewReasonAttr = "view_reason";
+// Why a face has the resolution it has: seen (the screen-space floor l_min), turned away, out of
+// frame, seen but its floor set by the lens's blur circle, or by motion blur.
+enum class ViewReason : char { seen = 0, back_facing = 1, out_of_frame = 2, defocused = 3, motion_blurred = 4 };
 
 struct ViewParams {
   double v_back = 0.2;                // factor of in-frame faces whose outer side faces away

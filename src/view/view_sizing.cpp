@@ -62,6 +62,7 @@ double ViewSizing::anticipated_factor(const Mesh& mesh, FaceId f, const Anticipa
 void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders) {
   factor_.assign(static_cast<std::size_t>(mesh.face_capacity()), 1.0);
   visible_.assign(factor_.size(), 0);
+  reason_.assign(factor_.size(), ViewReason::seen);
   counts_ = ViewCounts{};
   const AnticipationWindow window(path_, time_, frame_time_, params_);
   if (occluders != nullptr && occluders->empty()) occluders = nullptr;
@@ -95,6 +96,12 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   for (FloorSetBy by : floor_by) {
     counts_.defocused += by == FloorSetBy::defocus;
     counts_.blurred += by == FloorSetBy::motion_blur;
+  }
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    const auto f = static_cast<std::size_t>(faces[i].idx);
+    reason_[f] = kind[i] == 1 ? ViewReason::back_facing : kind[i] == 2 ? ViewReason::out_of_frame : ViewReason::seen;
+    if (kind[i] == 0 && lens_blurs_ && floor_by[i] == FloorSetBy::defocus) reason_[f] = ViewReason::defocused;
+    if (kind[i] == 0 && lens_blurs_ && floor_by[i] == FloorSetBy::motion_blur) reason_[f] = ViewReason::motion_blurred;
   }
   resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
 }

@@ -48,6 +48,7 @@ class ViewSizing final : public FaceSizingModifier {
   // open when the camera has motion blur (the cloth's motion and the camera's; none across a cut).
   double screen_floor(const Vec3& centre, const Vec3& velocity, FloorSetBy* set_by = nullptr) const;
   const std::vector<double>& factors() const { return factor_; }  // by face index
+  const std::vector<ViewReason>& reasons() const { return reason_; }  // by face index
   const ViewCounts& counts() const { return counts_; }
 
  private:
@@ -58,6 +59,7 @@ class ViewSizing final : public FaceSizingModifier {
   int threads_;
   std::vector<double> factor_;
   std::vector<char> visible_;  // by face index: in frame and facing the camera now
+  std::vector<ViewReason> reason_;  // by face index
   Camera now_;                 // the camera at time_
   std::optional<Camera> shutter_closes_;  // the camera when the shutter closes (motion blur)
   bool lens_blurs_ = false;               // depth of field or motion blur may raise the floor

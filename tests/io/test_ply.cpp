@@ -1,5 +1,5 @@
 // The view factors' PLY: what a run writes reads back (positions to the rounding asked for,
-// faces, values to the 6 significant digits written), and each malformed file is refused naming
+// faces, values to the 6 significant digits written, whole numbers exactly), and each malformed file is refused naming
 // its line.
 #include <gtest/gtest.h>
 
@@ -24,9 +24,14 @@ TEST(PlyFaceValues, WhatARunWritesReadsBack) {
   int k = 0;
   for (FaceId f : m.faces()) view[f] = 1.0 / (1 + k++);  // 1, 0.5, 0.333333, ...
   TempFile tmp(".ply");
-  ASSERT_TRUE(write_ply_with_face_values(m, tmp.path(), "view", "view_factor", 6));
+  auto& reason = m.face_attrs().get_or_add<double>("view_reason", 0.0);
+  k = 0;
+  for (FaceId f : m.faces()) reason[f] = k++ % 5;
+  ASSERT_TRUE(write_ply_with_face_values(m, tmp.path(), {{"view", "view_factor"}, {"reason", "view_reason", true}}, 6));
   const PlyFaceValues ply = read_ply_with_face_values(tmp.path());
   EXPECT_EQ(ply.name, "view");
+  ASSERT_EQ(ply.more.count("reason"), 1u);
+  ASSERT_EQ(ply.more.at("reason").size(), static_cast<std::size_t>(m.num_faces()));
   ASSERT_EQ(ply.positions.size(), static_cast<std::size_t>(m.num_nodes()));
   int32_t n = 0;
   for (NodeId v : m.nodes()) EXPECT_LE((ply.positions[static_cast<std::size_t>(n++)] - m.x(v)).cwiseAbs().maxCoeff(), 0.5e-6 + 1e-15);
@@ -35,14 +40,15 @@ TEST(PlyFaceValues, WhatARunWritesReadsBack) {
   for (FaceId f : m.faces()) {
     for (int c = 0; c < 3; ++c) EXPECT_EQ(ply.faces[i][static_cast<std::size_t>(c)], m.face_node(f, c).idx) << i;
     EXPECT_NEAR(ply.values[i], view[f], 5e-6 * view[f]) << i;  // half a unit of the 6th digit
+    EXPECT_EQ(ply.more.at("reason")[i], reason[f]) << i;
     ++i;
   }
 }
 
-std::string header(int vertices, int faces) {
+std::string header(int vertices, int faces, const std::string& face_properties = "property float view\n") {
   return "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex " + std::to_string(vertices) +
          "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(faces) +
-         "\nproperty list uchar int vertex_indices\nproperty float view\nend_header\n";
+         "\nproperty list uchar int vertex_indices\n" + face_properties + "end_header\n";
 }
 
 TEST(PlyFaceValues, AHandWrittenTriangleReadsAsWritten) {
@@ -65,6 +71,9 @@ TEST(PlyFaceValues, MalformedFilesAreRefusedAtTheirLine) {
       {"ply\nformat binary_little_endian 1.0\n", "line 2", "only 'format ascii 1.0'"},
       {header(3, 1) + body + "3 0 1 7 0.5\n", "line 15", "bad vertex index '7' (0 to 2)"},
       {header(3, 1) + body + "4 0 1 2 0.5\n", "line 15", "a face needs '3'"},
+      {header(3, 1) + body + "3 0 1 2 0.5 1\n", "line 15", "its 1 value(s)"},
+      {header(3, 1, "property float view\nproperty float view\n") + body, "line 11", "the face property 'view' twice"},
+      {header(3, 1, "") + body, "line 10", "expected a scalar face property after vertex_indices"},
       {header(3, 1) + body + "3 0 1 2 nan\n", "line 15", "expected a number, found 'nan'"},
       {header(3, 1) + "0 0 0\n1 0 x\n", "line 13", "expected a number, found 'x'"},
       {header(3, 1) + "0 0 0\n1 0 1e9\n", "line 13", "beyond 100 km"},

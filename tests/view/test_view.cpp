@@ -134,6 +134,7 @@ TEST(ViewSizing, EqTwoCoarsensTheShapeButNotTheMotionAndWaitsForTheDrape) {
     for (FaceId f : m.faces()) sizing[f] = shape;
     view.modify(m, motion, sizing);
     EXPECT_EQ(view.counts().back_facing, 2) << "t = " << t;
+    for (FaceId f : m.faces()) EXPECT_EQ(view.reasons()[static_cast<std::size_t>(f.idx)], ViewReason::back_facing);
     for (FaceId f : m.faces()) {
       if (t < p.settle) {
         EXPECT_EQ(view.factors()[static_cast<std::size_t>(f.idx)], 1.0);
@@ -277,6 +278,7 @@ TEST(ViewSizing, DepthOfFieldAndMotionBlurRaiseTheScreenFloor) {
   ASSERT_EQ(view.counts().visible, 2);
   EXPECT_EQ(view.counts().defocused, 2) << "the sheet at rest: its floor is the blur circle";
   EXPECT_EQ(view.counts().blurred, 0);
+  for (FaceId f : m.faces()) EXPECT_EQ(view.reasons()[static_cast<std::size_t>(f.idx)], ViewReason::defocused);
   for (FaceId f : m.faces()) {
     Eigen::SelfAdjointEigenSolver<Mat2> eig(sizing[f]);
     EXPECT_NEAR(1 / std::sqrt(eig.eigenvalues()[1]), 6.2168764 * 4 / fp, 0.01 * 6.2168764 * 4 / fp);
@@ -288,10 +290,12 @@ TEST(ViewSizing, DepthOfFieldAndMotionBlurRaiseTheScreenFloor) {
   moving.evaluate(m);
   EXPECT_EQ(moving.counts().blurred, 2);
   EXPECT_EQ(moving.counts().defocused, 0);
+  for (FaceId f : m.faces()) EXPECT_EQ(moving.reasons()[static_cast<std::size_t>(f.idx)], ViewReason::motion_blurred);
   const CameraPath pinhole(lens, {{0.0, lens.position, lens.target, false}});
   ViewSizing sharp(pinhole, p, 0.2, 0.04);
   sharp.evaluate(m);
   EXPECT_EQ(sharp.counts().blurred + sharp.counts().defocused, 0);
+  for (FaceId f : m.faces()) EXPECT_EQ(sharp.reasons()[static_cast<std::size_t>(f.idx)], ViewReason::seen);
 }
 
 TEST(CameraPath, InterpolatesWithinAShotAndJumpsAtACut) {

@@ -66,7 +66,12 @@ for (kind, name), by_frame in files.items():
                       "%s frame %d: pattern UVs %s, the OBJ's %s" % (obj.name, frame, got, last_face_uvs(path)))
         ply = path[:-4] + ".ply"
         if kind == "cloth" and os.path.exists(ply):
-            values = vdcloth_import.read_ply_values(ply)
+            columns = vdcloth_import.read_ply_columns(ply)
+            if "reason" in columns:
+                reason = obj.data.attributes.get("view_reason")
+                check(reason is not None and [a.value for a in reason.data] == [int(r) for r in columns["reason"]],
+                      "%s frame %d: view_reason attribute differs from the PLY" % (obj.name, frame))
+            values = columns["view"]
             attribute = obj.data.attributes.get("view")
             check(attribute is not None and attribute.domain == "FACE", "%s frame %d: no view face attribute" % (obj.name, frame))
             if attribute is not None:

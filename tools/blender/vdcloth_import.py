@@ -54,11 +54,13 @@ def read_obj(path):
     return verts, faces, uvs, face_uvs if len(face_uvs) == len(faces) else []
 
 
-def read_ply_values(path):
-    """The per-face values of the view factors' PLY, in face order."""
+def read_ply_columns(path):
+    """The per-face properties of the view factors' PLY ("view", and "reason" where written), by
+    name, each a list in face order."""
     with open(path) as f:
         lines = f.read().split("\n")
     vertices = faces = 0
+    names = []
     at = 0
     while lines[at] != "end_header":
         t = lines[at].split()
@@ -66,9 +68,17 @@ def read_ply_values(path):
             vertices = int(t[2])
         elif t[:2] == ["element", "face"]:
             faces = int(t[2])
+        elif t[:1] == ["property"] and faces and t[1] != "list":
+            names.append(t[2])
         at += 1
     start = at + 1 + vertices
-    return [float(lines[start + i].split()[4]) for i in range(faces)]
+    rows = [lines[start + i].split() for i in range(faces)]
+    return {name: [float(row[4 + k]) for row in rows] for k, name in enumerate(names)}
+
+
+def read_ply_values(path):
+    """The view factor of each face, in face order."""
+    return read_ply_columns(path)["view"]
 
 
 def frame_files(run_dir):
@@ -93,10 +103,15 @@ def build_mesh(name, path):
         layer.data.foreach_set("uv", [c for uv in corners for c in uv])
     ply = path[:-4] + ".ply"
     if os.path.exists(ply):
-        values = read_ply_values(ply)
-        if len(values) == len(mesh.polygons):
+        columns = read_ply_columns(ply)
+        if len(columns["view"]) == len(mesh.polygons):
             attribute = mesh.attributes.new(name="view", type="FLOAT", domain="FACE")
-            attribute.data.foreach_set("value", values)
+            attribute.data.foreach_set("value", columns["view"])
+        # What set the face's resolution: 0 seen, 1 turned away, 2 out of frame, 3 defocused,
+        # 4 motion-blurred.
+        if len(columns.get("reason", [])) == len(mesh.polygons):
+            attribute = mesh.attributes.new(name="view_reason", type="INT", domain="FACE")
+            attribute.data.foreach_set("value", [int(r) for r in columns["reason"]])
     mesh.update()
     mesh.use_fake_user = True  # kept while another frame's mesh is shown
     return mesh
