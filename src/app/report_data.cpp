@@ -1,6 +1,7 @@
 // A run's record and frames as the report page's scripts.
 #include "app/report_data.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cctype>
@@ -192,6 +193,11 @@ void write_frame_script(std::ostream& out, int run_index, int frame, const Frame
       mesh["positions"] = base64(float32_bytes(ply.positions));
       faces = base64(uint32_bytes(ply.faces));
       mesh["view"] = base64(float32_bytes(ply.values));
+      if (const auto reason = ply.more.find("reason"); reason != ply.more.end()) {
+        std::string bytes;
+        for (const double r : reason->second) bytes.push_back(static_cast<char>(std::clamp(r, 0.0, 255.0)));
+        mesh["reason"] = base64(bytes);
+      }
     } else {
       const MeshSource source = read_obj_source(path, false);
       mesh["positions"] = base64(float32_bytes(source.positions));

@@ -20,7 +20,8 @@ nlohmann::json read_run_record(const std::string& run_dir);
 
 // The meshes of one frame as the script `vdcloth.addFrame(run, frame, meshes)`: per mesh its
 // name, whether it is cloth, its positions (float32) and triangles (uint32) as little-endian
-// base64, and a cloth's view factor per face (float32) when its PLY is there. An obstacle whose
+// base64, and a cloth's view factor per face (float32) and what set it (uint8, "reason") when
+// its PLY has them. An obstacle whose
 // triangles are those recorded in `topology` (by mesh name, from the first frame written) gets
 // null triangles; the first frame of each obstacle records them. Throws InputError naming a mesh
 // file that cannot be read.

@@ -21,6 +21,7 @@
 #include "app/report_data.hpp"
 #include "app/run_frames.hpp"
 #include "core/error.hpp"
+#include "io/ply.hpp"
 #include "scene/scene.hpp"
 
 namespace vdc {
@@ -200,6 +201,13 @@ TEST_F(ReportTest, TheReportOpensInABrowserAndShowsTheRuns) {
   EXPECT_NE(last["vertices"][0], first["vertices"][0]);  // remeshed as it fell
   EXPECT_NEAR(last["cloth_pixels"].get<double>(), cloth_pixels(4), 0.06 * cloth_pixels(4));
   EXPECT_GT(result["shown"][2]["cloth_pixels"].get<double>(), 0.9 * last["cloth_pixels"].get<double>());  // view colours, wireframe
+  // Coloured by what set each face's resolution: the page holds the PLY's reasons.
+  const json& by_reason = result["shown"][3];
+  EXPECT_GT(by_reason["cloth_pixels"].get<double>(), 0.9 * last["cloth_pixels"].get<double>());
+  std::map<std::string, int> reasons;
+  const PlyFaceValues ply = read_ply_with_face_values(fs::path(view_frames.at(4).at("cloth_s")).replace_extension(".ply").string());
+  for (const double r : ply.more.at("reason")) ++reasons[std::to_string(static_cast<int>(r))];
+  EXPECT_EQ(by_reason["reasons"]["cloth_s"], json(reasons));
 
   // The plots hold the runs' stats.csv; the time breakdown, its timed parts and the rest of the
   // frame's wall time (none where the parts, timed across threads, add up to more).

@@ -70,6 +70,10 @@ const vdcloth = (() => {
     return [0, 1, 2].map((k) => a[k] + (b[k] - a[k]) * s);
   }
 
+  // What set a face's resolution (the PLY's reason): seen, turned away, out of frame, defocused,
+  // motion-blurred; the swatches of report.css.
+  const reasonColours = [[0.88, 0.28, 0.20], [0.94, 0.75, 0.20], [0.35, 0.35, 0.78], [0.24, 0.67, 0.67], [0.67, 0.31, 0.75]];
+
   // --- the 3D viewer -----------------------------------------------------------------------------
 
   class Viewer {
@@ -105,6 +109,7 @@ const vdcloth = (() => {
       this.group.clear ? this.group.clear() : this.group.remove(...this.group.children);
       const topology = runs[this.runIndex].topology || {};
       const vertices = {};
+      const reasonCounts = {};  // per cloth mesh with reasons: faces by reason
       let garment = 0;
       for (const mesh of meshes) {
         const positions = decode(mesh.positions, Float32Array);
@@ -125,9 +130,16 @@ const vdcloth = (() => {
         const corners = indexed.toNonIndexed();
         const colours = new Float32Array(faces.length * 3);
         const values = mesh.view ? decode(mesh.view, Float32Array) : null;
+        const reasons = mesh.reason ? decode(mesh.reason, Uint8Array) : null;
+        if (reasons) reasonCounts[mesh.name] = reasons.reduce((counts, r) => ((counts[r] = (counts[r] || 0) + 1), counts), {});
         const own = clothPalette[garment % clothPalette.length];
+        const colourOf = (f) => {
+          if (style.colour === 'view') return viewFactorColour(values ? values[f] : 1);
+          if (style.colour === 'reason') return reasonColours[reasons ? Math.min(reasons[f], reasonColours.length - 1) : 0];
+          return own;
+        };
         for (let f = 0; f < faces.length / 3; ++f) {
-          const c = style.colour === 'view' ? viewFactorColour(values ? values[f] : 1) : own;
+          const c = colourOf(f);
           for (let k = 0; k < 3; ++k) colours.set(c, (3 * f + k) * 3);
         }
         corners.setAttribute('color', new THREE.BufferAttribute(colours, 3));
@@ -144,7 +156,7 @@ const vdcloth = (() => {
         }
         ++garment;
       }
-      this.shown = { frame, vertices };
+      this.shown = { frame, vertices, reasons: reasonCounts };
     }
 
     render(camera) {
@@ -560,6 +572,9 @@ const vdcloth = (() => {
       document.getElementById('wireframe').checked = true;
       await redraw();
       out.shown.push({ style: 'view wireframe', pixels: viewer.countPixels(camera, true), cloth_pixels: viewer.countPixels(camera, false) });
+      document.getElementById('colour-choice').value = 'reason';
+      await redraw();
+      out.shown.push({ style: 'reason wireframe', cloth_pixels: viewer.countPixels(camera, false), reasons: viewer.shown.reasons });
     } catch (e) {
       window.vdclothErrors.push('self-test: ' + e);
     }
