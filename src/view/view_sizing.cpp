@@ -33,20 +33,20 @@ ViewSizing::ViewSizing(const CameraPath& path, const ViewParams& params, double 
 
 // Detail finer than the image's blur does not show: the blur circle of a thin lens, and the
 // streak of the face's image over the shutter's time (an extension of eqs. 5 to 8).
-double ViewSizing::screen_floor(const Vec3& centre, const Vec3& velocity, FloorSetBy* set_by) const {
+double ViewSizing::screen_floor(const Vec3& centre, const Vec3& velocity, ViewReason* set_by) const {
   double floor = params_.l_min;
-  FloorSetBy by = FloorSetBy::l_min;
+  ViewReason by = ViewReason::seen;
   double depth = 0;
   const Vec2 at_open = now_.project(centre, &depth);
   if (depth > 0 && params_.defocus_scale > 0) {
     const double defocus = params_.defocus_scale * now_.blur_circle_pixels(depth);
-    if (defocus > floor) floor = defocus, by = FloorSetBy::defocus;
+    if (defocus > floor) floor = defocus, by = ViewReason::defocused;
   }
   if (depth > 0 && shutter_closes_) {
     double depth_closed = 0;
     const Vec2 at_close = shutter_closes_->project(centre + velocity * (now_.shutter * frame_time_), &depth_closed);
     const double streak = depth_closed > 0 ? params_.motion_blur_scale * (at_close - at_open).norm() : 0.0;
-    if (streak > floor) floor = streak, by = FloorSetBy::motion_blur;
+    if (streak > floor) floor = streak, by = ViewReason::motion_blurred;
   }
   if (set_by) *set_by = by;
   return floor;
@@ -63,6 +63,7 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   factor_.assign(static_cast<std::size_t>(mesh.face_capacity()), 1.0);
   visible_.assign(factor_.size(), 0);
   reason_.assign(factor_.size(), ViewReason::seen);
+  floor_.assign(factor_.size(), params_.l_min);
   counts_ = ViewCounts{};
   const AnticipationWindow window(path_, time_, frame_time_, params_);
   if (occluders != nullptr && occluders->empty()) occluders = nullptr;
@@ -72,18 +73,21 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   std::vector<FaceId> faces;
   for (FaceId f : mesh.faces()) faces.push_back(f);
   std::vector<char> kind(faces.size(), 0);  // 0 visible, 1 back-facing, 2 out of frame
-  std::vector<FloorSetBy> floor_by(lens_blurs_ ? faces.size() : 0, FloorSetBy::l_min);
   const auto n = static_cast<int64_t>(faces.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (int64_t i = 0; i < n; ++i) {
     const FaceId f = faces[static_cast<std::size_t>(i)];
     const Vec3 &a = mesh.x(mesh.face_node(f, 0)), &b = mesh.x(mesh.face_node(f, 1)), &c = mesh.x(mesh.face_node(f, 2));
     const FaceView view = face_view(window.frusta.front(), a, b, c, params_, occluders != nullptr ? &occluders->front() : nullptr);
+    const auto at = static_cast<std::size_t>(f.idx);
     kind[static_cast<std::size_t>(i)] = view.distance > 0 ? 2 : view.front ? 0 : 1;
-    visible_[static_cast<std::size_t>(f.idx)] = kind[static_cast<std::size_t>(i)] == 0;
-    if (lens_blurs_ && kind[static_cast<std::size_t>(i)] == 0) {
+    visible_[at] = kind[static_cast<std::size_t>(i)] == 0;
+    reason_[at] = kind[static_cast<std::size_t>(i)] == 1 ? ViewReason::back_facing
+                  : kind[static_cast<std::size_t>(i)] == 2 ? ViewReason::out_of_frame
+                                                           : ViewReason::seen;
+    if (lens_blurs_ && visible_[at]) {
       const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
-      screen_floor((a + b + c) / 3.0, velocity, &floor_by[static_cast<std::size_t>(i)]);
+      floor_[at] = screen_floor((a + b + c) / 3.0, velocity, &reason_[at]);
     }
     factor_[static_cast<std::size_t>(f.idx)] =
         view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
@@ -93,15 +97,9 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     else if (k == 1) ++counts_.back_facing;
     else ++counts_.out_of_frame;
   }
-  for (FloorSetBy by : floor_by) {
-    counts_.defocused += by == FloorSetBy::defocus;
-    counts_.blurred += by == FloorSetBy::motion_blur;
-  }
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    const auto f = static_cast<std::size_t>(faces[i].idx);
-    reason_[f] = kind[i] == 1 ? ViewReason::back_facing : kind[i] == 2 ? ViewReason::out_of_frame : ViewReason::seen;
-    if (kind[i] == 0 && lens_blurs_ && floor_by[i] == FloorSetBy::defocus) reason_[f] = ViewReason::defocused;
-    if (kind[i] == 0 && lens_blurs_ && floor_by[i] == FloorSetBy::motion_blur) reason_[f] = ViewReason::motion_blurred;
+  for (FaceId f : faces) {
+    counts_.defocused += reason_[static_cast<std::size_t>(f.idx)] == ViewReason::defocused;
+    counts_.blurred += reason_[static_cast<std::size_t>(f.idx)] == ViewReason::motion_blurred;
   }
   resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
 }
@@ -121,11 +119,7 @@ void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attri
       dx.col(0) = mesh.x(mesh.face_node(f, 1)) - x0;
       dx.col(1) = mesh.x(mesh.face_node(f, 2)) - x0;
       const Vec3 centre = (x0 + mesh.x(mesh.face_node(f, 1)) + mesh.x(mesh.face_node(f, 2))) / 3.0;
-      double l_min = params_.l_min;
-      if (lens_blurs_) {
-        const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
-        l_min = screen_floor(centre, velocity);
-      }
+      const double l_min = floor_[static_cast<std::size_t>(f.idx)];  // evaluate()'s
       const double l_max = params_.l_max > 0 ? std::max(params_.l_max, l_min) : 0.0;
       m = screen_space_bounds(m, now_.projection_jacobian(centre), dx * du.inverse(), l_min, l_max);
     }

@@ -32,8 +32,6 @@ struct ViewCounts {
   int blurred = 0;       // visible, the floor set by motion blur
 };
 
-// What set a visible face's screen-space floor.
-enum class FloorSetBy { l_min, defocus, motion_blur };
 
 class ViewSizing final : public FaceSizingModifier {
  public:
@@ -41,12 +39,14 @@ class ViewSizing final : public FaceSizingModifier {
   // View factors of the mesh's faces at the current positions and time; `occluders`, when given
   // and not empty, are occlusion_images() of the same window (the back-face rule looks).
   void evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders = nullptr);
+  // On the mesh evaluate() saw: its factors, and its visible faces' screen-space floors.
   void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const override;
   // The screen-space floor, in pixels, of a visible face whose centre is at `centre` moving at
   // `velocity` now: l_min, raised to defocus_scale times its blur circle when the camera has
   // depth of field and to motion_blur_scale times how far its image moves while the shutter is
   // open when the camera has motion blur (the cloth's motion and the camera's; none across a cut).
-  double screen_floor(const Vec3& centre, const Vec3& velocity, FloorSetBy* set_by = nullptr) const;
+  // `set_by`, when given: seen (l_min), defocused or motion_blurred.
+  double screen_floor(const Vec3& centre, const Vec3& velocity, ViewReason* set_by = nullptr) const;
   const std::vector<double>& factors() const { return factor_; }  // by face index
   const std::vector<ViewReason>& reasons() const { return reason_; }  // by face index
   const ViewCounts& counts() const { return counts_; }
@@ -60,6 +60,7 @@ class ViewSizing final : public FaceSizingModifier {
   std::vector<double> factor_;
   std::vector<char> visible_;  // by face index: in frame and facing the camera now
   std::vector<ViewReason> reason_;  // by face index
+  std::vector<double> floor_;       // by face index: the screen-space floor of a visible face, pixels
   Camera now_;                 // the camera at time_
   std::optional<Camera> shutter_closes_;  // the camera when the shutter closes (motion blur)
   bool lens_blurs_ = false;               // depth of field or motion blur may raise the floor
