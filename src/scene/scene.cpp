@@ -267,10 +267,11 @@ struct GarmentMaking {
 
 // The garment placed in the world as given, on the project's figure; handles chosen on it.
 GarmentSpec parse_garment(const JsonValue& j, const std::string& scene_path, GarmentMaking& making) {
-  j.only_keys({"name", "group", "mesh", "material", "transform", "handles", "rest_shape", "fit"});
+  j.only_keys({"name", "group", "mesh", "material", "transform", "handles", "rest_shape", "fit", "sheer"});
   GarmentSpec g;
   g.name = j.at("name").string();
   g.group = j.string_or("group", "");
+  g.sheer = j.boolean_or("sheer", false);
   g.mesh = parse_mesh(j.at("mesh"), scene_path, true, &making.pattern);
   g.material = parse_material_ref(j.at("material"), scene_path);
   if (auto t = j.find("transform")) {
@@ -589,7 +590,7 @@ CameraPath parse_camera(const JsonValue& j) {
 ViewParams parse_view(const JsonValue& j) {
   j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "l_min", "l_max", "silhouette_threshold", "settle",
                "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation", "defocus_scale",
-               "motion_blur_scale"});
+               "motion_blur_scale", "occlusion", "v_occluded"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -610,6 +611,10 @@ ViewParams parse_view(const JsonValue& j) {
   if (erosion < 0 || erosion > 16) j.at("occlusion_erosion").fail("must be an integer from 0 to 16 (pixels)");
   p.occlusion_erosion = static_cast<int>(erosion);
   p.occlusion_depth = j.non_negative_or("occlusion_depth", p.occlusion_depth);
+  p.occlusion = j.boolean_or("occlusion", p.occlusion);
+  p.v_occluded = j.positive_or("v_occluded", p.v_back);
+  if (p.v_occluded > 1) j.at("v_occluded").fail("must be at most 1");
+  if (p.v_occluded < p.v_out) j.at("v_occluded").fail("must be at least v_out");
   p.motion_anticipation = j.boolean_or("motion_anticipation", p.motion_anticipation);
   p.defocus_scale = j.non_negative_or("defocus_scale", p.defocus_scale);
   p.motion_blur_scale = j.non_negative_or("motion_blur_scale", p.motion_blur_scale);

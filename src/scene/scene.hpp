@@ -30,6 +30,7 @@ struct GarmentSpec {
   // (empty: made as given) and the share of its ease it keeps.
   std::string fitted_to;
   double ease = 1.0;
+  bool sheer = false;  // see-through: hides nothing from the camera (view.occlusion)
 };
 
 // An obstacle: a mesh placed by its transform, then moved rigidly over time by its motion:

@@ -155,13 +155,13 @@ void Simulation::remesh_garments(FrameStats& stats) {
   };
   for (std::size_t o = 0; o < obstacle_faces_.size(); ++o) stand(obstacle_faces_[o], obstacle_x[o], -1);
   for (std::size_t g = 0; g < garments_.size(); ++g) stand(garment_meshes[g], garment_x[g], static_cast<int>(g));
-  // The back-face rule's depth images, once a frame for every garment: the same bodies and
-  // garments, seen by the window's cameras (none while settling: every factor is 1 then).
+  // The occlusion test's depth images, once a frame for every garment: the bodies and opaque
+  // garments seen by the window's cameras (none while settling: every factor is 1 then).
   std::vector<DepthImage> occluders;
-  if (viewing && scene_.view.back_occlusion && !(time() + 1e-9 < scene_.view.settle)) {
+  if (viewing && (scene_.view.back_occlusion || scene_.view.occlusion) && !(time() + 1e-9 < scene_.view.settle)) {
     const auto tv = std::chrono::steady_clock::now();
-    occluders = occlusion_images(AnticipationWindow(*scene_.camera, time(), scene_.frame_time, scene_.view), triangles, scene_.view,
-                                 options_.threads);
+    occluders = occlusion_images(AnticipationWindow(*scene_.camera, time(), scene_.frame_time, scene_.view), occluders_at(garment_meshes, garment_x),
+                                 scene_.view, options_.threads);
     stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
   }
   const StandingSurfaces standing(std::move(triangles), std::move(owners));
@@ -188,6 +188,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
       stats.out_of_frame_faces += views[gi]->counts().out_of_frame;
       stats.defocused_faces += views[gi]->counts().defocused;
       stats.blurred_faces += views[gi]->counts().blurred;
+      stats.hidden_faces += views[gi]->counts().hidden;
       stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
     }
   }
@@ -210,6 +211,34 @@ void Simulation::remesh_garments(FrameStats& stats) {
   stats.remesh_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const UntangleReport remeshed = untangle_garments(stats);
   if (remeshed.remaining > 0 && changed) keep_fewer_crossings(std::move(started_with), remeshed.remaining, stats);
+}
+
+// What may hide cloth from the camera tau seconds from now: the bodies where their motion takes
+// them, and the garments not marked sheer moved along their nodes' velocities (held where they
+// are without motion anticipation), an extension of Koh et al. 2014's eq. 4 to what is in front.
+OccluderSource Simulation::occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const {
+  return [this, &garment_meshes, &garment_x](double tau) {
+    std::vector<Triangle> triangles;
+    auto stand = [&](const CollisionMesh& mesh, const std::vector<Vec3>& x, const std::vector<Vec3>* v) {
+      auto at = [&](int n) { return v != nullptr ? Vec3(x[static_cast<std::size_t>(n)] + tau * (*v)[static_cast<std::size_t>(n)]) : x[static_cast<std::size_t>(n)]; };
+      for (const auto& face : mesh.faces) triangles.push_back({at(face[0]), at(face[1]), at(face[2])});
+    };
+    for (std::size_t o = 0; o < obstacle_faces_.size(); ++o) {
+      const ObstacleSpec& spec = scene_.obstacles[o];
+      const std::vector<Vec3> x = spec.moves() ? spec.positions_at(time() + tau) : spec.rest;
+      stand(obstacle_faces_[o], x, nullptr);
+    }
+    for (std::size_t g = 0; g < garments_.size(); ++g) {
+      if (scene_.garments[g].sheer) continue;
+      std::vector<Vec3> v;
+      if (scene_.view.motion_anticipation) {
+        v.assign(garment_x[g].size(), Vec3::Zero());
+        for (NodeId n : garments_[g].nodes()) v[static_cast<std::size_t>(n.idx)] = garments_[g].v(n);
+      }
+      stand(garment_meshes[g], garment_x[g], scene_.view.motion_anticipation ? &v : nullptr);
+    }
+    return triangles;
+  };
 }
 
 // Sizing (Narain et al. 2012, sec. 3) and remeshing touch one garment each, so a character's

@@ -55,6 +55,7 @@ struct FrameStats {
   // the view factors (part of remesh_seconds).
   int visible_faces = 0, back_facing_faces = 0, out_of_frame_faces = 0;
   int defocused_faces = 0, blurred_faces = 0;  // visible, their screen-space floor set by the lens's blur
+  int hidden_faces = 0;  // facing the camera in frame, behind something opaque (view.occlusion)
   double view_seconds = 0;
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
   int velocity_clamps = 0;  // steps whose velocity changes were clamped as a last resort
@@ -108,6 +109,7 @@ class Simulation {
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
   // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip
   // or collapse makes a garment cross the obstacles or another garment as they were `standing`.
+  OccluderSource occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const;
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                            const std::vector<std::vector<ObstaclePlane>>& planes,
                                            const StandingSurfaces& standing, std::vector<Mesh>& started_with);

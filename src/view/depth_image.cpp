@@ -17,41 +17,53 @@ DepthImage::DepthImage(const Camera& camera, const std::vector<Triangle>& triang
     std::array<double, 3> z{};
     for (int k = 0; k < 3; ++k) screen[static_cast<std::size_t>(k)] = scale * camera.project(t[static_cast<std::size_t>(k)], &z[static_cast<std::size_t>(k)]);
     if (z[0] < camera.near || z[1] < camera.near || z[2] < camera.near) continue;
+    // 1/z is linear on the screen: its gradient, so that each pixel keeps the triangle's farthest
+    // depth over the pixel's square rather than at its centre. A surface then never hides its own
+    // points (at a grazing angle its depth changes by more than occlusion_depth across a pixel).
+    const Vec2 ab = screen[1] - screen[0], ac = screen[2] - screen[0];
+    const double area = ab.x() * ac.y() - ab.y() * ac.x();
+    if (!(std::abs(area) > 1e-12)) continue;
+    const double q1 = 1 / z[1] - 1 / z[0], q2 = 1 / z[2] - 1 / z[0];
+    const double spread = 0.5 * (std::abs((ac.y() * q1 - ab.y() * q2) / area) + std::abs((ab.x() * q2 - ac.x() * q1) / area));
     rasterize_triangle(screen[0], screen[1], screen[2], z, width_, height_, [&](int x, int y, double, double, double, double d) {
+      const double q = 1 / d - spread;  // the least 1/z over the pixel
       double& here = nearest[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)];
-      here = std::min(here, d);
+      here = std::min(here, q > 0 ? 1 / q : infinity);
     });
   }
-  if (erosion <= 0) {
-    depth_ = std::move(nearest);
-    return;
+  // Each erosion is the last one's farthest within one pixel (a square of radius r + 1 is the
+  // union of the squares of radius r around its 3x3 pixels), rows then columns.
+  depth_.push_back(std::move(nearest));
+  for (int r = 1; r <= erosion; ++r) {
+    const std::vector<double>& last = depth_.back();
+    std::vector<double> rows(last.size()), next(last.size());
+    auto at = [&](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x); };
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        double far = 0;
+        for (int dx = std::max(0, x - 1); dx <= std::min(width_ - 1, x + 1); ++dx) far = std::max(far, last[at(dx, y)]);
+        rows[at(x, y)] = far;
+      }
+    for (int y = 0; y < height_; ++y)
+      for (int x = 0; x < width_; ++x) {
+        double far = 0;
+        for (int dy = std::max(0, y - 1); dy <= std::min(height_ - 1, y + 1); ++dy) far = std::max(far, rows[at(x, dy)]);
+        next[at(x, y)] = far;
+      }
+    depth_.push_back(std::move(next));
   }
-  // The farthest within the square of radius `erosion`, rows then columns (a separable max).
-  std::vector<double> rows(nearest.size());
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x) {
-      double far = 0;
-      for (int dx = std::max(0, x - erosion); dx <= std::min(width_ - 1, x + erosion); ++dx)
-        far = std::max(far, nearest[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(dx)]);
-      rows[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] = far;
-    }
-  depth_.assign(nearest.size(), 0.0);
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x) {
-      double far = 0;
-      for (int dy = std::max(0, y - erosion); dy <= std::min(height_ - 1, y + erosion); ++dy)
-        far = std::max(far, rows[static_cast<std::size_t>(dy) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)]);
-      depth_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] = far;
-    }
 }
 
-bool DepthImage::hidden(const Vec3& x, double margin) const {
+int DepthImage::hidden_levels(const Vec3& x, double margin) const {
   double z = 0;
   const Vec2 p = scale_ * camera_.project(x, &z);
-  if (!(z >= camera_.near) || !std::isfinite(p.x()) || !std::isfinite(p.y())) return false;
+  if (!(z >= camera_.near) || !std::isfinite(p.x()) || !std::isfinite(p.y())) return 0;
   const auto px = static_cast<int>(std::floor(p.x())), py = static_cast<int>(std::floor(p.y()));
-  if (px < 0 || py < 0 || px >= width_ || py >= height_) return false;
-  return z > depth_[static_cast<std::size_t>(py) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(px)] + margin;
+  if (px < 0 || py < 0 || px >= width_ || py >= height_) return 0;
+  const std::size_t at = static_cast<std::size_t>(py) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(px);
+  int hidden = 0;
+  while (hidden < levels() && z > depth_[static_cast<std::size_t>(hidden)][at] + margin) ++hidden;
+  return hidden;
 }
 
 }  // namespace vdc

@@ -1,8 +1,9 @@
 // What stands in front of cloth seen from the camera: a depth image (z-buffer) of the scene's
 // opaque triangles, bodies and garments, at a fraction of the camera's resolution. The view
-// factor asks it whether a face turned away from the camera is really hidden (Koh et al. 2014's
-// back-face rule, section 3.1, assumes it is): the inside of a hakama lifted by a kick or of a
-// flared skirt faces away from the camera and is in plain view.
+// factor asks it whether a face is hidden: behind a body, another garment or another layer, or,
+// turned away from the camera, really hidden (Koh et al. 2014's back-face rule, section 3.1,
+// assumes it is: the inside of a hakama lifted by a kick or of a flared skirt faces away from the
+// camera and is in plain view).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -40,13 +41,21 @@ void rasterize_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const std::
 
 class DepthImage {
  public:
-  // The nearest surface of `triangles` seen by `camera` at `scale` times its image size; a
+  // The nearest surface of `triangles` seen by `camera` at `scale` times its image size, each
+  // pixel at the farthest depth of that surface over the pixel's square (conservative); a
   // triangle with a corner in front of the near plane is left out (it hides nothing then).
   // `erosion` pixels: each pixel keeps the farthest of the nearest depths within that many
-  // pixels, so an occluder's edge hides nothing within `erosion` pixels of it.
+  // pixels, so an occluder's edge hides nothing within `erosion` pixels of it. The image is kept
+  // at every erosion from 0 to `erosion` (levels), for the ramp across that margin.
   DepthImage(const Camera& camera, const std::vector<Triangle>& triangles, double scale, int erosion);
-  // x lies behind that surface by more than `margin` metres (false outside the image).
-  bool hidden(const Vec3& x, double margin) const;
+  // x lies behind that surface, eroded by `erosion` pixels, by more than `margin` metres (false
+  // outside the image).
+  bool hidden(const Vec3& x, double margin) const { return hidden_levels(x, margin) == levels(); }
+  // How deep inside an occluder x lies: the number of erosions 0, 1, ..., `erosion` at which it
+  // is hidden (0: in plain view; levels(): hidden at the full erosion). Hidden at one erosion, a
+  // point is hidden at every smaller one.
+  int hidden_levels(const Vec3& x, double margin) const;
+  int levels() const { return static_cast<int>(depth_.size()); }
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -54,7 +63,8 @@ class DepthImage {
   Camera camera_;
   double scale_;
   int width_, height_;
-  std::vector<double> depth_;  // row-major, +infinity where nothing is near enough to hide
+  // depth_[r]: eroded by r pixels, row-major, +infinity where nothing is near enough to hide
+  std::vector<std::vector<double>> depth_;
 };
 
 }  // namespace vdc

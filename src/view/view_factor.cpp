@@ -23,20 +23,40 @@ bool seen_as_front(const Frustum& frustum, const Vec3& a, const Vec3& b, const V
 }
 
 // Eq. 3: from v_fb (in frame) down to v_out at `margin` from the frustum, linearly.
-double factor_at(double distance, bool front, const ViewParams& p) {
-  const double v_fb = front ? 1.0 : p.v_back;
+double factor_at(double distance, double v_fb, const ViewParams& p) {
   if (distance <= 0) return v_fb;
   if (distance >= p.margin) return p.v_out;
   return v_fb - distance / p.margin * (v_fb - p.v_out);
+}
+
+// How deep the face lies behind the occluders, 0 to 1: the fewest erosions at which any of its
+// corners and centre is hidden, over the image's levels (an extension of eq. 3's ramp at the
+// frustum to the outline of what hides the face).
+double hidden_fraction(const DepthImage& depth, const Vec3& a, const Vec3& b, const Vec3& c, double margin) {
+  int least = depth.levels();
+  for (const Vec3& x : {a, b, c, Vec3((a + b + c) / 3.0)}) {
+    least = std::min(least, depth.hidden_levels(x, margin));
+    if (least == 0) break;
+  }
+  return static_cast<double>(least) / depth.levels();
 }
 
 }  // namespace
 
 FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p, const DepthImage* depth) {
   FaceView view;
-  view.front = seen_as_front(frustum, a, b, c, p, depth);
+  double v_fb = 1;
+  if (p.occlusion && depth != nullptr) {
+    const bool facing = faces_camera(frustum, a, b, c);
+    view.hidden = hidden_fraction(*depth, a, b, c, p.occlusion_depth);
+    view.front = facing || view.hidden == 0;
+    v_fb = 1 - view.hidden * (1 - (facing ? p.v_occluded : p.v_back));
+  } else {
+    view.front = seen_as_front(frustum, a, b, c, p, depth);
+    v_fb = view.front ? 1.0 : p.v_back;
+  }
   view.distance = distance_to_frustum(frustum, a, b, c, p.margin);
-  view.factor = factor_at(view.distance, view.front, p);
+  view.factor = factor_at(view.distance, v_fb, p);
   return view;
 }
 
@@ -61,13 +81,14 @@ AnticipationWindow::AnticipationWindow(const CameraPath& path, double t, double 
   }
 }
 
-std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const std::vector<Triangle>& triangles, const ViewParams& p, int threads) {
-  if (!p.back_occlusion) return {};
+std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const OccluderSource& occluders, const ViewParams& p, int threads) {
+  if (!p.back_occlusion && !p.occlusion) return {};
   std::vector<std::optional<DepthImage>> made(window.cameras.size());
   const auto n = static_cast<int64_t>(made.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int64_t k = 0; k < n; ++k)
-    made[static_cast<std::size_t>(k)].emplace(window.cameras[static_cast<std::size_t>(k)], triangles, p.occlusion_scale, p.occlusion_erosion);
+    made[static_cast<std::size_t>(k)].emplace(window.cameras[static_cast<std::size_t>(k)], occluders(window.offsets[static_cast<std::size_t>(k)]),
+                                              p.occlusion_scale, p.occlusion_erosion);
   std::vector<DepthImage> images;
   images.reserve(made.size());
   for (auto& image : made) images.push_back(std::move(*image));
@@ -93,7 +114,7 @@ double anticipated_view_factor(const AnticipationWindow& window, const Vec3& a, 
     const Frustum& frustum = window.frusta[k];
     const bool front = faces_camera(frustum, ak, bk, ck) || depth != nullptr;
     const double d = frustum_plane_separation(frustum, ak, bk, ck);
-    if (w * std::max(factor_at(d, front, p), p.v_out) <= best) continue;
+    if (w * std::max(factor_at(d, front ? 1.0 : p.v_back, p), p.v_out) <= best) continue;
     best = std::max(best, w * face_view(frustum, ak, bk, ck, p, depth != nullptr ? &(*depth)[k] : nullptr).factor);
   }
   return best;

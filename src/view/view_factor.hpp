@@ -4,6 +4,7 @@
 // anticipation (eq. 4) over the camera's future, and silhouette resampling across edges where
 // the factor jumps.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "core/mesh.hpp"
@@ -18,8 +19,9 @@ inline constexpr const char* kViewFactorAttr = "view_factor";
 // Face attribute: what set the face's resolution at the last view evaluation (ViewReason).
 inline constexpr const char* kViewReasonAttr = "view_reason";
 // Why a face has the resolution it has: seen (the screen-space floor l_min), turned away, out of
-// frame, seen but its floor set by the lens's blur circle, or by motion blur.
-enum class ViewReason : char { seen = 0, back_facing = 1, out_of_frame = 2, defocused = 3, motion_blurred = 4 };
+// frame, seen but its floor set by the lens's blur circle, or by motion blur, or hidden behind
+// something opaque (ViewParams::occlusion).
+enum class ViewReason : char { seen = 0, back_facing = 1, out_of_frame = 2, defocused = 3, motion_blurred = 4, hidden = 5 };
 
 struct ViewParams {
   double v_back = 0.2;                // factor of in-frame faces whose outer side faces away
@@ -41,6 +43,12 @@ struct ViewParams {
   double occlusion_scale = 0.125;  // the depth images' size relative to the camera's image
   int occlusion_erosion = 1;       // pixels of a depth image: an occluder's edge hides nothing this near it
   double occlusion_depth = 0.02;   // m: how far behind the nearest surface a point must lie to be hidden
+  // A face in frame whose corners and centre all lie behind the depth images (bodies and opaque
+  // garments, at the window's sample times) takes v_occluded, turned away v_back, ramping to 1
+  // over the occlusion_erosion pixels inside the occluder's outline; a face turned away that
+  // nothing hides is the inside of a garment in view and counts as facing the camera.
+  bool occlusion = false;
+  double v_occluded = 0.2;  // factor of hidden faces that face the camera (a scene's default: its v_back)
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.
   bool motion_anticipation = true;
@@ -54,13 +62,15 @@ struct ViewParams {
 // How a face is seen at one instant.
 struct FaceView {
   double distance = 0;  // m, to the view frustum (0: in frame)
-  bool front = true;    // its outer side faces the camera
+  bool front = true;    // its outer side faces the camera (or its inner side is seen)
+  double hidden = 0;    // with occlusion: 0 in plain view, 1 hidden beyond the erosion, the ramp between
   double factor = 1;    // eq. 3
 };
 
 // Eq. 3 for the triangle (a, b, c), counter-clockwise seen from its outer side. With `depth` (the
 // scene seen by the frustum's camera), a face turned away counts as facing the camera unless
-// the depth image hides it (ViewParams::back_occlusion).
+// the depth image hides it (ViewParams::back_occlusion), and with ViewParams::occlusion a face
+// the depth image hides takes v_occluded (v_back if turned away) over the ramp.
 FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, const ViewParams& p,
                    const DepthImage* depth = nullptr);
 
@@ -76,9 +86,13 @@ struct AnticipationWindow {
   std::vector<double> offsets;  // s: the samples' times after t, offsets[0] = 0
 };
 
-// The depth images of `triangles` (the scene's bodies and garments, held where they are) from
-// each of the window's cameras, for the back-face rule; empty unless p.back_occlusion.
-std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const std::vector<Triangle>& triangles, const ViewParams& p,
+// The scene's opaque triangles (bodies and garments) `tau` seconds after the window's start.
+using OccluderSource = std::function<std::vector<Triangle>(double tau)>;
+
+// The depth images of `occluders` from each of the window's cameras, each of the occluders at
+// that camera's time (called side by side from the threads); empty unless p.back_occlusion or
+// p.occlusion.
+std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const OccluderSource& occluders, const ViewParams& p,
                                          int threads = 1);
 
 // Eq. 4: v(t) = max over tau of w(tau) v~(t + tau), the face held where it is; `depth`, when

@@ -72,7 +72,9 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   const bool settling = time_ + 1e-9 < params_.settle;  // frame times are sums of frame_time
   std::vector<FaceId> faces;
   for (FaceId f : mesh.faces()) faces.push_back(f);
-  std::vector<char> kind(faces.size(), 0);  // 0 visible, 1 back-facing, 2 out of frame
+  // What the camera sees of each face now: seen, back_facing (turned away, or with occlusion
+  // turned away and hidden), out_of_frame, or hidden (facing it behind something opaque).
+  std::vector<ViewReason> kind(faces.size(), ViewReason::seen);
   const auto n = static_cast<int64_t>(faces.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (int64_t i = 0; i < n; ++i) {
@@ -80,11 +82,13 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     const Vec3 &a = mesh.x(mesh.face_node(f, 0)), &b = mesh.x(mesh.face_node(f, 1)), &c = mesh.x(mesh.face_node(f, 2));
     const FaceView view = face_view(window.frusta.front(), a, b, c, params_, occluders != nullptr ? &occluders->front() : nullptr);
     const auto at = static_cast<std::size_t>(f.idx);
-    kind[static_cast<std::size_t>(i)] = view.distance > 0 ? 2 : view.front ? 0 : 1;
-    visible_[at] = kind[static_cast<std::size_t>(i)] == 0;
-    reason_[at] = kind[static_cast<std::size_t>(i)] == 1 ? ViewReason::back_facing
-                  : kind[static_cast<std::size_t>(i)] == 2 ? ViewReason::out_of_frame
-                                                           : ViewReason::seen;
+    const ViewReason seen_as = view.distance > 0 ? ViewReason::out_of_frame
+                               : view.hidden > 0 ? (view.front ? ViewReason::hidden : ViewReason::back_facing)
+                               : view.front      ? ViewReason::seen
+                                                 : ViewReason::back_facing;
+    kind[static_cast<std::size_t>(i)] = seen_as;
+    visible_[at] = seen_as == ViewReason::seen;
+    reason_[at] = seen_as;
     if (lens_blurs_ && visible_[at]) {
       const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
       floor_[at] = screen_floor((a + b + c) / 3.0, velocity, &reason_[at]);
@@ -92,10 +96,11 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     factor_[static_cast<std::size_t>(f.idx)] =
         view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
   }
-  for (char k : kind) {
-    if (k == 0) ++counts_.visible;
-    else if (k == 1) ++counts_.back_facing;
-    else ++counts_.out_of_frame;
+  for (ViewReason k : kind) {
+    counts_.visible += k == ViewReason::seen;
+    counts_.back_facing += k == ViewReason::back_facing;
+    counts_.out_of_frame += k == ViewReason::out_of_frame;
+    counts_.hidden += k == ViewReason::hidden;
   }
   for (FaceId f : faces) {
     counts_.defocused += reason_[static_cast<std::size_t>(f.idx)] == ViewReason::defocused;

@@ -28,6 +28,7 @@ struct ViewCounts {
   int visible = 0;       // in frame, outer side towards the camera
   int back_facing = 0;   // in frame, outer side away (and hidden, with occluders)
   int out_of_frame = 0;  // not in frame
+  int hidden = 0;        // in frame, outer side towards the camera, behind something opaque (occlusion)
   int defocused = 0;     // visible, the screen-space floor set by the blur circle
   int blurred = 0;       // visible, the floor set by motion blur
 };

@@ -606,8 +606,12 @@ TEST_F(CliTest, Table1RunsEverySceneInEveryModeAndWritesTheTables) {
     EXPECT_EQ(row.at("frames_checked"), "3") << "frames 0, 1 and 2 checked: " << run;
     EXPECT_EQ(row.at("frames_with_crossings"), "0") << "no crossings: " << run;
     EXPECT_GT(std::stod(row.at("cpu_seconds_per_frame")), 0) << run;
-    EXPECT_GE(std::stod(row.at("steal_percent")), 0) << run;
-    EXPECT_LE(std::stod(row.at("steal_percent")), 100) << run;
+    // Empty (unknown) when the machine's CPU counters did not advance during the run: these
+    // runs take a few hundredths of a second, about the kernel's clock tick.
+    if (!row.at("steal_percent").empty()) {
+      EXPECT_GE(std::stod(row.at("steal_percent")), 0) << run;
+      EXPECT_LE(std::stod(row.at("steal_percent")), 100) << run;
+    }
     EXPECT_EQ(row.at("status"), "done") << run;
     EXPECT_EQ(row.at("frames"), "2") << run;
     if (row.at("mode") == "adaptive") {

@@ -7,36 +7,15 @@
 #include "view/depth_image.hpp"
 #include "view/view_factor.hpp"
 #include "support/front_camera.hpp"
+#include "support/occluders.hpp"
 
 namespace vdc {
 namespace {
 
+using test::centre;
 using test::front_camera;
-
-// The square [-1, 1]^2 in the plane z = 0, facing +z.
-std::vector<Triangle> wall() {
-  const Vec3 a(-1, -1, 0), b(1, -1, 0), c(1, 1, 0), d(-1, 1, 0);
-  return {Triangle{a, b, c}, Triangle{a, c, d}};
-}
-
-// A sphere of radius r at the origin, outward counter-clockwise, from polar angle theta0 to
-// theta1 (measured from +z): 0 to pi is the whole ball, pi/2 to pi its half below z = 0.
-std::vector<Triangle> sphere_band(double r, double theta0, double theta1, int rings = 24, int sectors = 48) {
-  auto at = [&](int i, int j) {
-    const double theta = theta0 + (theta1 - theta0) * i / rings, phi = 2 * M_PI * j / sectors;
-    return Vec3(r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi), r * std::cos(theta));
-  };
-  std::vector<Triangle> out;
-  for (int i = 0; i < rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      const Vec3 a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      if ((b - a).cross(c - a).norm() > 1e-12) out.push_back({a, b, c});
-      if ((c - a).cross(d - a).norm() > 1e-12) out.push_back({a, c, d});
-    }
-  return out;
-}
-
-Vec3 centre(const Triangle& t) { return (t[0] + t[1] + t[2]) / 3.0; }
+using test::sphere_band;
+using test::wall;
 
 TEST(DepthImage, APointIsHiddenOnlyBehindTheWallByMoreThanTheMargin) {
   const DepthImage image(front_camera(), wall(), 0.125, 0);
@@ -140,10 +119,10 @@ TEST(BackFaceRule, AnticipationSeesTheFaceComeOutFromBehindTheWall) {
   const AnticipationWindow window(path, 0.0, frame, p);
   std::vector<Triangle> scene = wall();
   scene.push_back(t);
-  const std::vector<DepthImage> images = occlusion_images(window, scene, p);
+  const std::vector<DepthImage> images = occlusion_images(window, [&](double) { return scene; }, p);
   ASSERT_EQ(images.size(), window.cameras.size());
   p.back_occlusion = false;
-  EXPECT_TRUE(occlusion_images(window, scene, p).empty());  // the seed's rule needs none
+  EXPECT_TRUE(occlusion_images(window, [&](double) { return scene; }, p).empty());  // the seed's rule needs none
   p.back_occlusion = true;
   // The first sample whose camera sees every corner and the centre.
   double expected = p.v_back;

@@ -71,8 +71,9 @@ const vdcloth = (() => {
   }
 
   // What set a face's resolution (the PLY's reason): seen, turned away, out of frame, defocused,
-  // motion-blurred; the swatches of report.css.
-  const reasonColours = [[0.88, 0.28, 0.20], [0.94, 0.75, 0.20], [0.35, 0.35, 0.78], [0.24, 0.67, 0.67], [0.67, 0.31, 0.75]];
+  // motion-blurred, hidden; the swatches of report.css.
+  const reasonColours = [[0.88, 0.28, 0.20], [0.94, 0.75, 0.20], [0.35, 0.35, 0.78], [0.24, 0.67, 0.67], [0.67, 0.31, 0.75],
+    [0.45, 0.45, 0.45]];
 
   // --- the 3D viewer -----------------------------------------------------------------------------
 
