@@ -796,7 +796,7 @@ std::vector<Scene> split_groups(Scene scene) {
   }
   for (std::size_t k = 0; k < groups.size(); ++k)
     for (const auto& o : obstacles)
-      if (o.group == groups[k] || o.group.empty()) parts[k].obstacles.push_back(o);
+      (o.group == groups[k] || o.group.empty() ? parts[k].obstacles : parts[k].hiding).push_back(o);
   return parts;
 }
 
@@ -811,7 +811,10 @@ Scene keep_groups(Scene scene, const std::vector<std::string>& groups) {
     }
   auto wanted = [&](const std::string& group) { return std::find(groups.begin(), groups.end(), group) != groups.end(); };
   std::erase_if(scene.garments, [&](const GarmentSpec& g) { return !wanted(g.group); });
-  std::erase_if(scene.obstacles, [&](const ObstacleSpec& o) { return !o.group.empty() && !wanted(o.group); });
+  const auto others = std::stable_partition(scene.obstacles.begin(), scene.obstacles.end(),
+                                            [&](const ObstacleSpec& o) { return o.group.empty() || wanted(o.group); });
+  scene.hiding.insert(scene.hiding.end(), std::make_move_iterator(others), std::make_move_iterator(scene.obstacles.end()));
+  scene.obstacles.erase(others, scene.obstacles.end());
   return scene;
 }
 

@@ -79,6 +79,9 @@ struct Scene {
   double fixed_size = 0;   // m: edge size of --mode fixed; 0 means remeshing.size_min
   std::vector<GarmentSpec> garments;
   std::vector<ObstacleSpec> obstacles;
+  // Obstacles of other garment groups (a part of a crowd, split_groups and keep_groups): they
+  // never touch this scene's garments but may hide them from the camera (view.occlusion).
+  std::vector<ObstacleSpec> hiding;
   std::optional<CameraPath> camera;  // the `camera` block; --mode view needs it
   ViewParams view;                   // the `view` block
   // Frames simulated before the shot's frame 0 (from time -preroll_frames * frame_time, never

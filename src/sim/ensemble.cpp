@@ -67,6 +67,8 @@ void Ensemble::make_parts(Scene scene, std::size_t expected_parts, const std::st
       };
     parts_[i] = make(i, std::move(scenes[i]), part_options, part_log);
   });
+  const auto bodies = std::make_shared<DepthCache>();  // the same for every group
+  for (auto& part : parts_) part->share_depth_cache(bodies);
 }
 
 Ensemble::Ensemble(Scene scene, const SimOptions& options, Simulation::Log log)

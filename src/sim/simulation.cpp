@@ -98,6 +98,7 @@ void Simulation::check_options_and_collect_obstacles() {
     obstacle_faces_.push_back(collision_mesh(o.mesh));
     obstacles_.push_back(o.mesh);
   }
+  for (const auto& o : scene_.hiding) hiding_faces_.push_back(collision_mesh(o.mesh));
 }
 
 void Simulation::place_obstacles() {
@@ -160,6 +161,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
   std::vector<DepthImage> occluders;
   if (viewing && (scene_.view.back_occlusion || scene_.view.occlusion) && !(time() + 1e-9 < scene_.view.settle)) {
     const auto tv = std::chrono::steady_clock::now();
+    depth_cache_->forget_before(time());
     occluders = occlusion_images(AnticipationWindow(*scene_.camera, time(), scene_.frame_time, scene_.view), occluders_at(garment_meshes, garment_x),
                                  scene_.view, options_.threads);
     stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
@@ -213,31 +215,37 @@ void Simulation::remesh_garments(FrameStats& stats) {
   if (remeshed.remaining > 0 && changed) keep_fewer_crossings(std::move(started_with), remeshed.remaining, stats);
 }
 
-// What may hide cloth from the camera tau seconds from now: the bodies where their motion takes
-// them, and the garments not marked sheer moved along their nodes' velocities (held where they
-// are without motion anticipation), an extension of Koh et al. 2014's eq. 4 to what is in front.
-OccluderSource Simulation::occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const {
-  return [this, &garment_meshes, &garment_x](double tau) {
+// What may hide cloth from the camera tau seconds from now, an extension of Koh et al. 2014's
+// eq. 4 to what is in front: every body of the scene (its other garment groups' too) where its
+// motion takes it, drawn once for all groups (the depth cache), then this group's garments not
+// marked sheer moved along their nodes' velocities (held where they are without motion
+// anticipation).
+OccluderDrawing Simulation::occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const {
+  return [this, &garment_meshes, &garment_x](DepthImage& image, double tau) {
+    const double t = time() + tau;
+    image = depth_cache_->at(t, image.camera(), scene_.view.occlusion_scale, [&] {
+      std::vector<Triangle> triangles;
+      auto stand = [&](const ObstacleSpec& spec, const CollisionMesh& mesh) {
+        const std::vector<Vec3> x = spec.positions_at(t);
+        for (const auto& face : mesh.faces)
+          triangles.push_back({x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])], x[static_cast<std::size_t>(face[2])]});
+      };
+      for (std::size_t o = 0; o < scene_.obstacles.size(); ++o) stand(scene_.obstacles[o], obstacle_faces_[o]);
+      for (std::size_t o = 0; o < scene_.hiding.size(); ++o) stand(scene_.hiding[o], hiding_faces_[o]);
+      return triangles;
+    });
     std::vector<Triangle> triangles;
-    auto stand = [&](const CollisionMesh& mesh, const std::vector<Vec3>& x, const std::vector<Vec3>* v) {
-      auto at = [&](int n) { return v != nullptr ? Vec3(x[static_cast<std::size_t>(n)] + tau * (*v)[static_cast<std::size_t>(n)]) : x[static_cast<std::size_t>(n)]; };
-      for (const auto& face : mesh.faces) triangles.push_back({at(face[0]), at(face[1]), at(face[2])});
-    };
-    for (std::size_t o = 0; o < obstacle_faces_.size(); ++o) {
-      const ObstacleSpec& spec = scene_.obstacles[o];
-      const std::vector<Vec3> x = spec.moves() ? spec.positions_at(time() + tau) : spec.rest;
-      stand(obstacle_faces_[o], x, nullptr);
-    }
     for (std::size_t g = 0; g < garments_.size(); ++g) {
       if (scene_.garments[g].sheer) continue;
-      std::vector<Vec3> v;
-      if (scene_.view.motion_anticipation) {
-        v.assign(garment_x[g].size(), Vec3::Zero());
-        for (NodeId n : garments_[g].nodes()) v[static_cast<std::size_t>(n.idx)] = garments_[g].v(n);
-      }
-      stand(garment_meshes[g], garment_x[g], scene_.view.motion_anticipation ? &v : nullptr);
+      const Mesh& mesh = garments_[g];
+      const bool moving = scene_.view.motion_anticipation;
+      auto at = [&](int n) {
+        const NodeId node(n);
+        return moving ? Vec3(garment_x[g][static_cast<std::size_t>(n)] + tau * mesh.v(node)) : garment_x[g][static_cast<std::size_t>(n)];
+      };
+      for (const auto& face : garment_meshes[g].faces) triangles.push_back({at(face[0]), at(face[1]), at(face[2])});
     }
-    return triangles;
+    image.draw(triangles);
   };
 }
 

@@ -15,6 +15,7 @@
 #include "remesh/sizing.hpp"
 #include "scene/scene.hpp"
 #include "sim/step_recovery.hpp"
+#include "view/depth_cache.hpp"
 
 namespace vdc {
 
@@ -89,6 +90,9 @@ class Simulation {
   // last velocity change as a first guess, the collision hierarchies): the next frame starts
   // them afresh from the meshes, as a simulation resumed from this frame does.
   void restart_solvers() { restart_pending_ = true; }
+  // Shares the bodies' depth images (view.occlusion) with the scene's other garment groups,
+  // stepped side by side at the same times.
+  void share_depth_cache(std::shared_ptr<DepthCache> cache) { depth_cache_ = std::move(cache); }
 
   int frame() const { return frame_; }
   double time() const { return frame_ * scene_.frame_time; }
@@ -109,7 +113,7 @@ class Simulation {
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
   // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip
   // or collapse makes a garment cross the obstacles or another garment as they were `standing`.
-  OccluderSource occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const;
+  OccluderDrawing occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const;
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                            const std::vector<std::vector<ObstaclePlane>>& planes,
                                            const StandingSurfaces& standing, std::vector<Mesh>& started_with);
@@ -166,6 +170,10 @@ class Simulation {
   std::vector<Mesh> garments_;
   std::vector<Mesh> obstacles_;  // placed at time()
   std::vector<CollisionMesh> obstacle_faces_;  // the obstacles' faces, for collisions and sizing
+  std::vector<CollisionMesh> hiding_faces_;    // scene_.hiding's faces, for occlusion
+  // Depth images of the bodies (view.occlusion), shared with the other garment groups of the
+  // scene when stepped in an Ensemble.
+  std::shared_ptr<DepthCache> depth_cache_ = std::make_shared<DepthCache>();
   struct ObstaclePositions {
     double t = 0;
     std::vector<std::vector<Vec3>> x;  // empty: not computed yet

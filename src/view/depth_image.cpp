@@ -2,21 +2,32 @@
 #include "view/depth_image.hpp"
 
 #include <limits>
+#include <stdexcept>
 
 namespace vdc {
 
-DepthImage::DepthImage(const Camera& camera, const std::vector<Triangle>& triangles, double scale, int erosion)
+DepthImage::DepthImage(const Camera& camera, double scale)
     : camera_(camera),
       scale_(scale),
       width_(std::max(1, static_cast<int>(std::lround(camera.width * scale)))),
       height_(std::max(1, static_cast<int>(std::lround(camera.height * scale)))) {
+  depth_.emplace_back(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), std::numeric_limits<double>::infinity());
+}
+
+DepthImage::DepthImage(const Camera& camera, const std::vector<Triangle>& triangles, double scale, int erosion) : DepthImage(camera, scale) {
+  draw(triangles);
+  erode(erosion);
+}
+
+void DepthImage::draw(const std::vector<Triangle>& triangles) {
+  if (eroded_) throw std::logic_error("DepthImage::draw after erode");
   const double infinity = std::numeric_limits<double>::infinity();
-  std::vector<double> nearest(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), infinity);
+  std::vector<double>& nearest = depth_.front();
   for (const Triangle& t : triangles) {
     std::array<Vec2, 3> screen;
     std::array<double, 3> z{};
-    for (int k = 0; k < 3; ++k) screen[static_cast<std::size_t>(k)] = scale * camera.project(t[static_cast<std::size_t>(k)], &z[static_cast<std::size_t>(k)]);
-    if (z[0] < camera.near || z[1] < camera.near || z[2] < camera.near) continue;
+    for (int k = 0; k < 3; ++k) screen[static_cast<std::size_t>(k)] = scale_ * camera_.project(t[static_cast<std::size_t>(k)], &z[static_cast<std::size_t>(k)]);
+    if (z[0] < camera_.near || z[1] < camera_.near || z[2] < camera_.near) continue;
     // 1/z is linear on the screen: its gradient, so that each pixel keeps the triangle's farthest
     // depth over the pixel's square rather than at its centre. A surface then never hides its own
     // points (at a grazing angle its depth changes by more than occlusion_depth across a pixel).
@@ -31,9 +42,13 @@ DepthImage::DepthImage(const Camera& camera, const std::vector<Triangle>& triang
       here = std::min(here, q > 0 ? 1 / q : infinity);
     });
   }
+}
+
+void DepthImage::erode(int erosion) {
+  if (eroded_) throw std::logic_error("DepthImage::erode twice");
+  eroded_ = true;
   // Each erosion is the last one's farthest within one pixel (a square of radius r + 1 is the
   // union of the squares of radius r around its 3x3 pixels), rows then columns.
-  depth_.push_back(std::move(nearest));
   for (int r = 1; r <= erosion; ++r) {
     const std::vector<double>& last = depth_.back();
     std::vector<double> rows(last.size()), next(last.size());

@@ -41,13 +41,19 @@ void rasterize_triangle(const Vec2& a, const Vec2& b, const Vec2& c, const std::
 
 class DepthImage {
  public:
-  // The nearest surface of `triangles` seen by `camera` at `scale` times its image size, each
-  // pixel at the farthest depth of that surface over the pixel's square (conservative); a
-  // triangle with a corner in front of the near plane is left out (it hides nothing then).
-  // `erosion` pixels: each pixel keeps the farthest of the nearest depths within that many
-  // pixels, so an occluder's edge hides nothing within `erosion` pixels of it. The image is kept
-  // at every erosion from 0 to `erosion` (levels), for the ramp across that margin.
+  // Nothing seen yet by `camera` at `scale` times its image size (every pixel hides nothing).
+  DepthImage(const Camera& camera, double scale);
+  // The nearest surface of `triangles` seen by `camera`, eroded by `erosion` pixels: draw, then
+  // erode.
   DepthImage(const Camera& camera, const std::vector<Triangle>& triangles, double scale, int erosion);
+  // Adds `triangles` to the nearest surface, each pixel at the farthest depth of its nearest
+  // triangle over the pixel's square (conservative); a triangle with a corner in front of the
+  // near plane is left out (it hides nothing then). Only before erode().
+  void draw(const std::vector<Triangle>& triangles);
+  // Keeps the image at every erosion from 0 to `erosion` pixels (levels): at erosion r each
+  // pixel holds the farthest of the nearest depths within r pixels, so an occluder's edge hides
+  // nothing within r pixels of it. Once.
+  void erode(int erosion);
   // x lies behind that surface, eroded by `erosion` pixels, by more than `margin` metres (false
   // outside the image).
   bool hidden(const Vec3& x, double margin) const { return hidden_levels(x, margin) == levels(); }
@@ -58,6 +64,7 @@ class DepthImage {
   int levels() const { return static_cast<int>(depth_.size()); }
   int width() const { return width_; }
   int height() const { return height_; }
+  const Camera& camera() const { return camera_; }
 
  private:
   Camera camera_;
@@ -65,6 +72,7 @@ class DepthImage {
   int width_, height_;
   // depth_[r]: eroded by r pixels, row-major, +infinity where nothing is near enough to hide
   std::vector<std::vector<double>> depth_;
+  bool eroded_ = false;
 };
 
 }  // namespace vdc

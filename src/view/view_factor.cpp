@@ -81,14 +81,17 @@ AnticipationWindow::AnticipationWindow(const CameraPath& path, double t, double 
   }
 }
 
-std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const OccluderSource& occluders, const ViewParams& p, int threads) {
+std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const OccluderDrawing& draw, const ViewParams& p, int threads) {
   if (!p.back_occlusion && !p.occlusion) return {};
   std::vector<std::optional<DepthImage>> made(window.cameras.size());
   const auto n = static_cast<int64_t>(made.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-  for (int64_t k = 0; k < n; ++k)
-    made[static_cast<std::size_t>(k)].emplace(window.cameras[static_cast<std::size_t>(k)], occluders(window.offsets[static_cast<std::size_t>(k)]),
-                                              p.occlusion_scale, p.occlusion_erosion);
+  for (int64_t k = 0; k < n; ++k) {
+    const auto at = static_cast<std::size_t>(k);
+    made[at].emplace(window.cameras[at], p.occlusion_scale);
+    draw(*made[at], window.offsets[at]);
+    made[at]->erode(p.occlusion_erosion);
+  }
   std::vector<DepthImage> images;
   images.reserve(made.size());
   for (auto& image : made) images.push_back(std::move(*image));

@@ -86,14 +86,13 @@ struct AnticipationWindow {
   std::vector<double> offsets;  // s: the samples' times after t, offsets[0] = 0
 };
 
-// The scene's opaque triangles (bodies and garments) `tau` seconds after the window's start.
-using OccluderSource = std::function<std::vector<Triangle>(double tau)>;
+// Draws into `image` (a camera of the window, nothing drawn yet) the scene's opaque triangles,
+// bodies and garments, where they are `tau` seconds after the window's start.
+using OccluderDrawing = std::function<void(DepthImage& image, double tau)>;
 
-// The depth images of `occluders` from each of the window's cameras, each of the occluders at
-// that camera's time (called side by side from the threads); empty unless p.back_occlusion or
-// p.occlusion.
-std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const OccluderSource& occluders, const ViewParams& p,
-                                         int threads = 1);
+// The depth images of what `draw` draws from each of the window's cameras at that camera's time
+// (called side by side from the threads), eroded; empty unless p.back_occlusion or p.occlusion.
+std::vector<DepthImage> occlusion_images(const AnticipationWindow& window, const OccluderDrawing& draw, const ViewParams& p, int threads = 1);
 
 // Eq. 4: v(t) = max over tau of w(tau) v~(t + tau), the face held where it is; `depth`, when
 // given, holds occlusion_images(window, ...) (one image a camera).

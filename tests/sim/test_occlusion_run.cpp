@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "scene/scene.hpp"
+#include "sim/ensemble.hpp"
 #include "sim/simulation.hpp"
 
 namespace vdc {
@@ -63,6 +64,33 @@ TEST(OcclusionRun, AnOpaqueSheetHidesTheOneUnderItASheerOneDoesNot) {
   EXPECT_EQ(off.stats.hidden_faces, 0);
   EXPECT_EQ(off.stats.visible_faces, 64);
   EXPECT_EQ(off.least, 1.0);
+}
+
+// A crowd: the lower sheet in group "a", a ball of group "b" between it and the camera (and
+// b's own sheet far to the side). The ball collides with nothing of group a, but it hides a's
+// sheet: in the whole scene stepped as an ensemble, and in group a run alone.
+TEST(OcclusionRun, AnotherGroupsBodyHidesThisGroupsCloth) {
+  const fs::path dir = fs::temp_directory_path() / ("vdcloth-occlusion-groups-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::create_directories(dir);
+  const std::string material = std::string("\"") + VDCLOTH_SOURCE_DIR + "/materials/cotton.json\"";
+  const fs::path path = dir / "crowd.json";
+  std::ofstream(path) << R"({"frame_time": 0.04, "substeps": 2, "remeshing": {"size": [0.05, 0.2]},
+    "camera": {"fov": 40, "width": 640, "height": 360, "up": [0, 0, -1], "keys": [{"time": 0, "position": [0, 3, 0], "target": [0, 0, 0]}]},
+    "view": {"occlusion": true},
+    "garments": [
+      {"name": "under", "group": "a", "mesh": {"grid": {"size": [0.5, 0.5], "cells": [4, 4]}}, "transform": {"translate": [-0.25, -0.5, 0.25]},
+       "material": )" << material << R"(},
+      {"name": "aside", "group": "b", "mesh": {"grid": {"size": [0.5, 0.5], "cells": [4, 4]}}, "transform": {"translate": [5, -0.5, 0.25]},
+       "material": )" << material << R"(}],
+    "obstacles": [{"name": "ball", "group": "b", "mesh": {"sphere": {"radius": 0.6, "subdivisions": 3}}, "transform": {"translate": [0, 1.2, 0]}}]})";
+  Ensemble whole(load_scene(path.string()), SimOptions{SimMode::View, 2});
+  ASSERT_EQ(whole.parts().size(), 2u);
+  EXPECT_EQ(whole.parts()[0]->scene().obstacles.size(), 0u);
+  EXPECT_EQ(whole.parts()[0]->scene().hiding.size(), 1u);
+  EXPECT_EQ(whole.step_frame().hidden_faces, 32);  // a's sheet; b's is out of frame
+  Ensemble alone(keep_groups(load_scene(path.string()), {"a"}), SimOptions{SimMode::View, 1});
+  EXPECT_EQ(alone.step_frame().hidden_faces, 32);
+  fs::remove_all(dir);
 }
 
 }  // namespace

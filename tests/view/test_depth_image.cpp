@@ -119,10 +119,10 @@ TEST(BackFaceRule, AnticipationSeesTheFaceComeOutFromBehindTheWall) {
   const AnticipationWindow window(path, 0.0, frame, p);
   std::vector<Triangle> scene = wall();
   scene.push_back(t);
-  const std::vector<DepthImage> images = occlusion_images(window, [&](double) { return scene; }, p);
+  const std::vector<DepthImage> images = occlusion_images(window, [&](DepthImage& image, double) { image.draw(scene); }, p);
   ASSERT_EQ(images.size(), window.cameras.size());
   p.back_occlusion = false;
-  EXPECT_TRUE(occlusion_images(window, [&](double) { return scene; }, p).empty());  // the seed's rule needs none
+  EXPECT_TRUE(occlusion_images(window, [&](DepthImage& image, double) { image.draw(scene); }, p).empty());  // the seed's rule needs none
   p.back_occlusion = true;
   // The first sample whose camera sees every corner and the centre.
   double expected = p.v_back;

@@ -3,11 +3,14 @@
 // before an occluder moves away; the inside of a garment nothing hides keeps full resolution.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <thread>
 
 #include "scene/body.hpp"
 #include "scene/figure.hpp"
 #include "scene/joint_names.hpp"
+#include "view/depth_cache.hpp"
 #include "view/depth_image.hpp"
 #include "view/view_factor.hpp"
 #include "support/front_camera.hpp"
@@ -97,7 +100,7 @@ TEST(Occlusion, AWallSlidingAwayRefinesTheFaceBeforehandAsEq4Prescribes) {
   CameraPath path(front_camera(), {{0.0, Vec3(0, 0, 5), Vec3(0, 0, 0), false}});
   const AnticipationWindow window(path, 0.0, frame, p);
   const Triangle t{Vec3(0.98, 0, -0.5), Vec3(1.0, 0, -0.5), Vec3(0.98, 0.02, -0.5)};
-  const auto images = occlusion_images(window, [&](double tau) { return wall(-speed * tau); }, p);
+  const auto images = occlusion_images(window, [&](DepthImage& image, double tau) { image.draw(wall(-speed * tau)); }, p);
   ASSERT_EQ(images.size(), window.cameras.size());
   const double f = 360 / std::tan(20 * M_PI / 180);
   const double column = std::floor(640 + f * 1.0 / 5.5);
@@ -116,7 +119,7 @@ TEST(Occlusion, AWallSlidingAwayRefinesTheFaceBeforehandAsEq4Prescribes) {
   EXPECT_GT(expected, p.v_occluded + 0.1);  // seen within the window, refined before it is seen
   EXPECT_LT(expected, 1.0);
   // The wall held where it is hides the face over the whole window.
-  const auto held = occlusion_images(window, [&](double) { return wall(); }, p);
+  const auto held = occlusion_images(window, [&](DepthImage& image, double) { image.draw(wall()); }, p);
   EXPECT_DOUBLE_EQ(anticipated_view_factor(window, t[0], t[1], t[2], p, &held), p.v_occluded);
 }
 
@@ -220,6 +223,42 @@ TEST(Occlusion, ACameraInsideASkirtSeesItsInsideAtFullResolution) {
     EXPECT_DOUBLE_EQ(face_view(frustum, t[0], t[1], t[2], seed).factor, p.v_back);
   }
   EXPECT_GT(in_frame, 100);
+}
+
+// The bodies' images are drawn once a sample time for all garment groups, whichever asks first
+// and however many ask at once; each gets its own copy to add its garments to.
+TEST(DepthCache, DrawsEachTimeOnceForAllWhoAskAndForgetsThePast) {
+  DepthCache cache;
+  std::atomic<int> drawn = 0;
+  auto the_wall = [&] {
+    ++drawn;
+    return wall();
+  };
+  std::vector<std::thread> groups;
+  std::vector<std::optional<DepthImage>> got(4);
+  for (std::size_t g = 0; g < got.size(); ++g) groups.emplace_back([&, g] { got[g].emplace(cache.at(0.1, front_camera(), 0.125, the_wall)); });
+  for (auto& t : groups) t.join();
+  EXPECT_EQ(drawn, 1);
+  for (auto& image : got) {
+    image->erode(1);
+    EXPECT_TRUE(image->hidden(Vec3(0.1, 0.2, -0.5), 0.02));
+  }
+  DepthImage mine = cache.at(0.1, front_camera(), 0.125, the_wall);
+  mine.draw({facing_at(Vec3(1.2, 0, 1), 1.0)});  // added to the copy only
+  mine.erode(0);
+  const Vec3 behind_it(1.5, 0.2, 0.5);  // behind that square, beside the wall
+  EXPECT_TRUE(mine.hidden(behind_it, 0.02));
+  cache.at(0.2, front_camera(), 0.125, the_wall);
+  EXPECT_EQ(drawn, 2);
+  EXPECT_EQ(cache.size(), 2u);
+  cache.forget_before(0.15);
+  EXPECT_EQ(cache.size(), 1u);
+  cache.at(0.1, front_camera(), 0.125, the_wall);
+  EXPECT_EQ(drawn, 3);  // forgotten, drawn again
+  DepthImage again = cache.at(0.1, front_camera(), 0.125, the_wall);
+  again.erode(0);
+  EXPECT_FALSE(again.hidden(behind_it, 0.02));  // the square was added to `mine` only
+  EXPECT_EQ(drawn, 3);
 }
 
 }  // namespace

@@ -1,0 +1,35 @@
+// Depth images that every garment group of a scene shares: what the scene's bodies hide from
+// the camera at one of eq. 4's sample times (view.occlusion) is the same for every group, so
+// it is drawn once, by the first group that asks, and each group adds its own garments to a
+// copy. One cache serves one scene's camera.
+#pragma once
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "view/depth_image.hpp"
+
+namespace vdc {
+
+class DepthCache {
+ public:
+  // The image, not eroded, of `triangles()` seen by `camera` at time t at `scale` times its
+  // size: drawn by the first caller for that time (triangles() called once), copied to each.
+  DepthImage at(double t, const Camera& camera, double scale, const std::function<std::vector<Triangle>()>& triangles);
+  // Forgets the images of times before t.
+  void forget_before(double t);
+  std::size_t size() const;
+
+ private:
+  struct Entry {
+    std::once_flag drawn;
+    std::optional<DepthImage> image;
+  };
+  mutable std::mutex mutex_;
+  std::map<double, std::shared_ptr<Entry>> entries_;
+};
+
+}  // namespace vdc
