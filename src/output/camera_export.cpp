@@ -76,7 +76,13 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
   j["far"] = lens.far;
   j["sensor_height_mm"] = lens.sensor_height_mm;
   j["focal_length_mm"] = lens.focal_length_mm();
-  if (lens.focus_distance > 0) j["depth_of_field"] = {{"focus_distance", lens.focus_distance}, {"f_stop", lens.f_stop}};
+  // The focus distance is each frame's (it follows the target with focus_on_target); here the
+  // first frame's, for tools that take one.
+  const bool depth_of_field = lens.focus_on_target || lens.focus_distance > 0;
+  if (depth_of_field)
+    j["depth_of_field"] = {{"focus_distance", shot.empty() ? lens.focus_distance : shot.front().camera.focus_distance},
+                           {"f_stop", lens.f_stop},
+                           {"follows_target", lens.focus_on_target}};
   if (lens.shutter > 0) j["shutter"] = lens.shutter;
   j["rotation_order"] = "ZXY";
   j["frames"] = nlohmann::json::array();
@@ -91,6 +97,7 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
                            {"forward", vec(forward)},
                            {"up", vec(up)},
                            {"rotation_degrees", vec(c.rotation_degrees)}});
+    if (depth_of_field) j["frames"].back()["focus_distance"] = c.camera.focus_distance;
   }
   const std::string json_path = dir + "/camera.json";
   std::ofstream json_file(json_path);

@@ -558,7 +558,11 @@ CameraPath parse_camera(const JsonValue& j) {
   if (lens.far <= lens.near) j.at("far").fail("must be beyond near");
   lens.up = j.vec3_or("up", lens.up);
   if (lens.up.norm() == 0) j.at("up").fail("must not be zero");
-  lens.focus_distance = j.non_negative_or("focus_distance", lens.focus_distance);
+  const auto focus = j.find("focus_distance");
+  lens.focus_on_target = focus && focus->is_string();
+  if (lens.focus_on_target && focus->string() != "target")
+    focus->fail("expected a distance in metres, or \"target\" for the focus to follow the camera's target");
+  if (!lens.focus_on_target) lens.focus_distance = j.non_negative_or("focus_distance", lens.focus_distance);
   lens.f_stop = j.positive_or("f_stop", lens.f_stop);
   if (lens.f_stop < 0.5 || lens.f_stop > 256) j.at("f_stop").fail("must be between 0.5 and 256");
   lens.sensor_height_mm = j.positive_or("sensor_height", lens.sensor_height_mm);

@@ -132,6 +132,7 @@ Camera CameraPath::at(double t) const {
   Camera c = lens_;
   c.position = shots_[s].position.at(t);
   c.target = shots_[s].target.at(t);
+  if (c.focus_on_target) c.focus_distance = (c.target - c.position).norm();
   return c;
 }
 

@@ -21,6 +21,9 @@ struct Camera {
   // focus, the f-number, and the sensor's height, which with the field of view gives the focal
   // length.
   double focus_distance = 0;  // m, along the view direction
+  // The focus follows the target (a focus puller on the subject): CameraPath::at sets
+  // focus_distance to the target's distance at each time.
+  bool focus_on_target = false;
   double f_stop = 2.8;
   double sensor_height_mm = 24;
   // Motion blur: how long the shutter is open, as a fraction of the frame time (0: no blur).

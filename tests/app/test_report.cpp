@@ -31,10 +31,10 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // A sheet hanging above a ball, seen by a camera that cuts at 0.08 s (frame 2), with depth of
-// field and motion blur.
+// field (focused on its target) and motion blur.
 const char* kScene =
     R"({"frames": 4, "substeps": 2, "remeshing": {"size": [0.06, 0.5]},)"
-    R"( "camera": {"fov": 40, "width": 320, "height": 240, "focus_distance": 1.5, "f_stop": 4, "shutter": 0.5, "keys": [)"
+    R"( "camera": {"fov": 40, "width": 320, "height": 240, "focus_distance": "target", "f_stop": 4, "shutter": 0.5, "keys": [)"
     R"({"time": 0, "position": [0.5, 0.6, 1.6], "target": [0.5, 0.0, -0.5]},)"
     R"({"time": 0.08, "position": [0.6, 0.9, 1.4], "target": [0.5, 0.0, -0.5], "cut": true}]},)"
     R"( "obstacles": [{"name": "ball", "mesh": {"sphere": {"radius": 0.2, "subdivisions": 2}}, "transform": {"translate": [0.5, -0.5, -0.5]}}],)"

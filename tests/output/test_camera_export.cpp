@@ -126,6 +126,34 @@ TEST(CameraExport, FilesHoldEveryFrame) {
   std::filesystem::remove_all(dir);
 }
 
+// A focus that follows the target: each frame's focus distance is the target's distance, 5 m
+// at frame 0 and sqrt(1 + 16) at the cut (frame 4); a fixed focus is the same every frame.
+TEST(CameraExport, EachFrameHoldsItsFocus) {
+  const std::string dir = temp_dir();
+  Camera lens;
+  lens.focus_on_target = true;
+  lens.f_stop = 2;
+  const CameraPath follow(lens, two_shots().keys());
+  write_camera_files(follow, 0.25, 8, dir);
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/camera.json"));
+  EXPECT_EQ(j["depth_of_field"]["follows_target"], true);
+  EXPECT_EQ(j["depth_of_field"]["f_stop"], 2.0);
+  EXPECT_DOUBLE_EQ(j["depth_of_field"]["focus_distance"].get<double>(), 5.0);
+  EXPECT_DOUBLE_EQ(j["frames"][0]["focus_distance"].get<double>(), 5.0);
+  EXPECT_DOUBLE_EQ(j["frames"][4]["focus_distance"].get<double>(), std::sqrt(17.0));
+  lens.focus_on_target = false;
+  lens.focus_distance = 3;
+  write_camera_files(CameraPath(lens, two_shots().keys()), 0.25, 8, dir);
+  j = nlohmann::json::parse(std::ifstream(dir + "/camera.json"));
+  EXPECT_EQ(j["depth_of_field"]["follows_target"], false);
+  for (const auto& frame : j["frames"]) EXPECT_EQ(frame["focus_distance"], 3.0);
+  write_camera_files(two_shots(), 0.25, 8, dir);  // a pinhole: no focus anywhere
+  j = nlohmann::json::parse(std::ifstream(dir + "/camera.json"));
+  EXPECT_FALSE(j.contains("depth_of_field"));
+  EXPECT_FALSE(j["frames"][0].contains("focus_distance"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CameraExport, AnUnwritableDirectoryIsAnOutputError) {
   EXPECT_THROW(write_camera_files(two_shots(), 0.25, 8, temp_dir() + "/missing/sub"), OutputError);
 }

@@ -308,6 +308,12 @@ TEST(CameraPath, InterpolatesWithinAShotAndJumpsAtACut) {
   EXPECT_EQ(path.at(2.0).position, Vec3(9, 9, 9));     // the new shot from the cut on
   EXPECT_EQ(path.cuts_in(1.0, 2.0), std::vector<double>{2.0});
   EXPECT_TRUE(path.cuts_in(2.0, 3.0).empty());
+  EXPECT_EQ(path.at(0.5).focus_distance, 0.0);  // a pinhole
+  lens.focus_on_target = true;  // the focus pulled to the target: its distance at every time
+  const CameraPath pulled(lens, keys);
+  EXPECT_DOUBLE_EQ(pulled.at(0.0).focus_distance, 5.0);
+  EXPECT_DOUBLE_EQ(pulled.at(1.0).focus_distance, std::sqrt(29.0));
+  EXPECT_DOUBLE_EQ(pulled.at(2.5).focus_distance, std::sqrt(3 * 64.0));
 }
 
 }  // namespace

@@ -91,11 +91,15 @@ if os.path.exists(camera_path):
     dof = lens.get("depth_of_field")
     check(camera.data.dof.use_dof == bool(dof), "camera depth of field %s, camera.json %s" % (camera.data.dof.use_dof, dof))
     if dof:
-        check(abs(camera.data.dof.focus_distance - dof["focus_distance"]) < 1e-5 and abs(camera.data.dof.aperture_fstop - dof["f_stop"]) < 1e-5,
+        focus = dof["focus_distance"] if not dof.get("follows_target") else camera.data.dof.focus_distance  # else checked by frame
+        check(abs(camera.data.dof.focus_distance - focus) < 1e-5 and abs(camera.data.dof.aperture_fstop - dof["f_stop"]) < 1e-5,
               "camera focus %g m at f/%g, camera.json %s" % (camera.data.dof.focus_distance, camera.data.dof.aperture_fstop, dof))
         check(abs(camera.data.lens - lens["focal_length_mm"]) < 1e-3, "camera lens %g mm, camera.json %g" % (camera.data.lens, lens["focal_length_mm"]))
     for frame in frames:
         scene.frame_set(frame["frame"])
+        if "focus_distance" in frame:
+            check(abs(camera.data.dof.focus_distance - frame["focus_distance"]) < 1e-4,
+                  "camera focus %g m at frame %d, camera.json %g" % (camera.data.dof.focus_distance, frame["frame"], frame["focus_distance"]))
         m = camera.matrix_world
         position = vdcloth_import.to_blender(frame["position"])
         forward = vdcloth_import.to_blender(frame["forward"]).normalized()

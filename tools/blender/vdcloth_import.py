@@ -155,9 +155,15 @@ def import_camera(run_dir, scene, collection):
         obj.matrix_world = camera_matrix(frame)
         obj.keyframe_insert("location", frame=frame["frame"])
         obj.keyframe_insert("rotation_euler", frame=frame["frame"])
+        if dof and "focus_distance" in frame:  # the focus pulled frame by frame
+            data.dof.focus_distance = frame["focus_distance"]
+            data.keyframe_insert("dof.focus_distance", frame=frame["frame"])
         if frame["cut"]:
             obj["cuts"] = list(obj.get("cuts", [])) + [frame["frame"]]
-    for curve in obj.animation_data.action.fcurves:
+    curves = list(obj.animation_data.action.fcurves)
+    if data.animation_data and data.animation_data.action:
+        curves += list(data.animation_data.action.fcurves)
+    for curve in curves:
         for key in curve.keyframe_points:
             key.interpolation = "CONSTANT"
     scene.camera = obj
