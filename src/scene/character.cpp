@@ -1,6 +1,7 @@
 // Animated character obstacles: skinned procedural bodies placed in the scene.
 #include "scene/character.hpp"
 
+#include "core/bvh.hpp"
 #include "scene/dressing.hpp"
 
 namespace vdc {
@@ -11,6 +12,13 @@ Character::Character(Motion motion, const BodyParams& body, const Transform& pla
   body_ = skin ? std::make_unique<Body>(*motion_, body, std::move(*skin)) : std::make_unique<Body>(*motion_, body);
   clip_ = MotionClip{motion_.get(), start, speed};
   dressing_ = dressing.pose ? *dressing.pose : Body::rest_pose(motion_->skeleton);
+  Aabb box;
+  for (const Vec3& x : body_->rest_mesh().positions) box.grow(x);
+  if (!body_->rest_mesh().positions.empty()) rest_diagonal_ = (box.hi - box.lo).norm();
+}
+
+std::pair<Vec3, double> Character::reach_at(double t) const {
+  return {joint_transform(0, t).translation(), placement_.scale * rest_diagonal_};
 }
 
 Pose Character::pose_at(double t) const {

@@ -31,6 +31,10 @@ class Character {
   std::vector<Vec3> positions_at(double t) const;
   // The placed world transform of a joint (index into the motion's skeleton) at scene time t.
   Eigen::Affine3d joint_transform(int joint, double t) const;
+  // A ball that holds the placed body at scene time t, found without skinning it: around the
+  // root joint, as wide as the rest body's box is long diagonally (no limb reaches farther from
+  // the root than the whole figure is long).
+  std::pair<Vec3, double> reach_at(double t) const;
   const Motion& motion() const { return *motion_; }
   const BodyParams& body_params() const { return body_params_; }
   // The skeleton's pose at scene time t: the clip's from time 0 on, the dressing pose before the
@@ -53,6 +57,7 @@ class Character {
   MotionClip clip_;
   Pose dressing_;
   double preroll_ = 0;
+  double rest_diagonal_ = 0;  // of the rest body's bounding box, unplaced
 };
 
 }  // namespace vdc

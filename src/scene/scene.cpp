@@ -826,6 +826,11 @@ Scene keep_groups(Scene scene, const std::vector<std::string>& groups) {
 
 namespace vdc {
 
+std::pair<Vec3, double> ObstacleSpec::reach_at(double t) const {
+  if (character && translate.empty() && rotate.empty()) return character->reach_at(t);
+  return {Vec3::Zero(), -1.0};
+}
+
 std::vector<Vec3> ObstacleSpec::positions_at(double t) const {
   std::vector<Vec3> out = character ? character->positions_at(t) : sequence.size() > 1 ? interpolate_frames(sequence, sequence_frame_time, t) : rest;
   if (translate.empty() && rotate.empty()) return out;  // no rigid motion: the positions as they are

@@ -50,6 +50,9 @@ struct ObstacleSpec {
   std::shared_ptr<const Character> character;
   bool moves() const { return !translate.empty() || !rotate.empty() || sequence.size() > 1 || character; }
   std::vector<Vec3> positions_at(double t) const;
+  // A ball that holds the obstacle at time t, found without placing its vertices: a character
+  // that no rigid motion moves (Character::reach_at); radius -1 (unknown) otherwise.
+  std::pair<Vec3, double> reach_at(double t) const;
 };
 
 struct AirSpec {

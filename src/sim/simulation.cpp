@@ -225,7 +225,10 @@ OccluderDrawing Simulation::occluders_at(const std::vector<CollisionMesh>& garme
     const double t = time() + tau;
     image = depth_cache_->at(t, image.camera(), scene_.view.occlusion_scale, [&] {
       std::vector<Triangle> triangles;
+      const Frustum frustum(image.camera());
       auto stand = [&](const ObstacleSpec& spec, const CollisionMesh& mesh) {
+        const auto [centre, radius] = spec.reach_at(t);
+        if (radius >= 0 && ball_outside(frustum, centre, radius)) return;  // hides nothing in frame
         const std::vector<Vec3> x = spec.positions_at(t);
         for (const auto& face : mesh.faces)
           triangles.push_back({x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])], x[static_cast<std::size_t>(face[2])]});

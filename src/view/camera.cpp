@@ -126,6 +126,12 @@ CameraPath::CameraPath(const Camera& lens, std::vector<CameraKey> keys) : lens_(
   }
 }
 
+bool ball_outside(const Frustum& frustum, const Vec3& centre, double radius) {
+  for (const auto& [n, c] : frustum.planes)
+    if (n.dot(centre) + c < -radius) return true;
+  return false;
+}
+
 Camera CameraPath::at(double t) const {
   std::size_t s = 0;
   while (s + 1 < shots_.size() && shots_[s + 1].start <= t) ++s;

@@ -60,6 +60,8 @@ struct Frustum {
 // World-space distance from the triangle (a, b, c) to the view frustum: 0 when any part of it
 // is inside. `cap`: distances of at least cap may be returned as cap (cheaper).
 double distance_to_frustum(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c, double cap);
+// The ball of `radius` around `centre` lies wholly outside the frustum, beyond one of its planes.
+bool ball_outside(const Frustum& frustum, const Vec3& centre, double radius);
 // A lower bound of that distance, cheap: how far the whole triangle lies beyond any one of the
 // frustum's planes (0 if beyond none).
 double frustum_plane_separation(const Frustum& frustum, const Vec3& a, const Vec3& b, const Vec3& c);

@@ -62,6 +62,7 @@ double ViewSizing::anticipated_factor(const Mesh& mesh, FaceId f, const Anticipa
 void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders) {
   factor_.assign(static_cast<std::size_t>(mesh.face_capacity()), 1.0);
   visible_.assign(factor_.size(), 0);
+  floored_.assign(factor_.size(), 0);
   reason_.assign(factor_.size(), ViewReason::seen);
   floor_.assign(factor_.size(), params_.l_min);
   counts_ = ViewCounts{};
@@ -88,10 +89,15 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
                                                  : ViewReason::back_facing;
     kind[static_cast<std::size_t>(i)] = seen_as;
     visible_[at] = seen_as == ViewReason::seen;
+    // With occlusion, what is hidden in frame is no finer than what is seen beside it: the
+    // screen-space floor bounds every face in frame (l_max only the seen ones).
+    floored_[at] = visible_[at] || (params_.occlusion && seen_as != ViewReason::out_of_frame);
     reason_[at] = seen_as;
-    if (lens_blurs_ && visible_[at]) {
+    if (lens_blurs_ && floored_[at]) {
       const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
-      floor_[at] = screen_floor((a + b + c) / 3.0, velocity, &reason_[at]);
+      ViewReason set_by = ViewReason::seen;
+      floor_[at] = screen_floor((a + b + c) / 3.0, velocity, &set_by);
+      if (visible_[at]) reason_[at] = set_by;
     }
     factor_[static_cast<std::size_t>(f.idx)] =
         view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
@@ -114,7 +120,7 @@ void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attri
     const double v = factor_[static_cast<std::size_t>(f.idx)];
     Mat2 m = v * v * face_sizing[f];  // eq. 2, on the shape only:
     if (v < 1) m = tensor_max(m, motion[static_cast<std::size_t>(f.idx)]);
-    if (visible_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0 || lens_blurs_)) {
+    if (floored_[static_cast<std::size_t>(f.idx)] && (params_.l_min > 0 || params_.l_max > 0 || lens_blurs_)) {
       const auto& vs = mesh.face_verts(f);
       Mat2 du;
       du.col(0) = mesh.u(vs[1]) - mesh.u(vs[0]);
@@ -125,7 +131,7 @@ void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attri
       dx.col(1) = mesh.x(mesh.face_node(f, 2)) - x0;
       const Vec3 centre = (x0 + mesh.x(mesh.face_node(f, 1)) + mesh.x(mesh.face_node(f, 2))) / 3.0;
       const double l_min = floor_[static_cast<std::size_t>(f.idx)];  // evaluate()'s
-      const double l_max = params_.l_max > 0 ? std::max(params_.l_max, l_min) : 0.0;
+      const double l_max = params_.l_max > 0 && visible_[static_cast<std::size_t>(f.idx)] ? std::max(params_.l_max, l_min) : 0.0;
       m = screen_space_bounds(m, now_.projection_jacobian(centre), dx * du.inverse(), l_min, l_max);
     }
     face_sizing[f] = m;

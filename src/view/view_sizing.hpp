@@ -5,7 +5,8 @@
 // window unless motion_anticipation is off, then silhouette resampling); modify() scales the physical
 // tensors by v^2 (eq. 2) but never below the velocity criterion (what the camera does not see
 // still has to move as the seen cloth does), and, on faces visible now, bounds them in screen
-// space so that no edge is asked to be shorter than l_min pixels (eqs. 5 to 8) nor, when l_max
+// space so that no edge is asked to be shorter than l_min pixels (eqs. 5 to 8; with occlusion on
+// every face in frame, hidden or turned away too) nor, when l_max
 // is set, longer than l_max pixels (an extension: the visible cloth keeps the degrees of
 // freedom its folds need). Before `settle` every factor is 1: a garment finds its
 // drape on the body with nothing coarsened for facing away or being out of frame (the screen-
@@ -60,6 +61,7 @@ class ViewSizing final : public FaceSizingModifier {
   int threads_;
   std::vector<double> factor_;
   std::vector<char> visible_;  // by face index: in frame and facing the camera now
+  std::vector<char> floored_;  // by face index: under the screen-space floor (visible, or in frame with occlusion)
   std::vector<ViewReason> reason_;  // by face index
   std::vector<double> floor_;       // by face index: the screen-space floor of a visible face, pixels
   Camera now_;                 // the camera at time_

@@ -52,6 +52,31 @@ TEST(Character, PlacedSkinnedBodyFollowsItsMotion) {
   EXPECT_GT(moved, 0.2);
 }
 
+// The ball occlusion culls bodies by holds every vertex of the placed, scaled body through the
+// whole dance, found without skinning; an obstacle a rigid motion moves has none (radius -1).
+TEST(Character, ItsReachHoldsTheBodyThroughTheWholeMotion) {
+  const std::string motion = std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh";
+  Scene s = load_scene(write_scene(R"({"name": "d", "character": {"motion": ")" + motion +
+                                   R"(", "resolution": 0.04}, "transform": {"translate": [2, 0, 0], "rotate": [0, 90, 0], "scale": 1.2}})"));
+  fs::remove_all(fs::path(s.path).parent_path());
+  const ObstacleSpec& o = s.obstacles[0];
+  double closest_call = 0;  // the largest share of the radius any vertex needs
+  for (double t = 0; t <= 10; t += 0.25) {
+    const auto [centre, radius] = o.reach_at(t);
+    ASSERT_GT(radius, 1.2 * 1.5);  // at least the figure's height, scaled
+    ASSERT_LT(radius, 1.2 * 2.5);
+    for (const Vec3& x : o.positions_at(t)) {
+      ASSERT_LE((x - centre).norm(), radius) << "t = " << t;
+      closest_call = std::max(closest_call, (x - centre).norm() / radius);
+    }
+  }
+  EXPECT_GT(closest_call, 0.4);
+  Scene moved = load_scene(write_scene(R"({"name": "d", "character": {"motion": ")" + motion +
+                                       R"(", "resolution": 0.04}, "motion": {"translate": [{"time": 0, "offset": [0, 0, 0]}, {"time": 1, "offset": [1, 0, 0]}]}})"));
+  fs::remove_all(fs::path(moved.path).parent_path());
+  EXPECT_EQ(moved.obstacles[0].reach_at(0.5).second, -1.0);
+}
+
 TEST(Character, AnObstacleIsAMeshOrACharacter) {
   const std::string motion = std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh";
   const std::string both = write_scene(R"({"name": "d", "mesh": {"sphere": {"radius": 1}}, "character": {"motion": ")" + motion + R"("}})");

@@ -150,6 +150,45 @@ TEST(ViewSizing, EqTwoCoarsensTheShapeButNotTheMotionAndWaitsForTheDrape) {
   }
 }
 
+// With occlusion, a hidden face is no finer than a seen one beside it: the screen-space floor
+// l_min bounds it too (4 px at 5 m: 4 * 5 / f metres, f = 360 / tan(20 deg)), but l_max does not
+// refine it (1 m edges stay 1 m where a seen face is held to 10 px, 10 * 5 / f).
+TEST(ViewSizing, HiddenFacesKeepTheScreenSpaceFloorButNotTheCeiling) {
+  Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
+  Camera lens = front_camera();
+  lens.up = Vec3(0, 0, -1);
+  const CameraPath path(lens, {{0.0, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from above
+  ViewParams p;
+  p.occlusion = true;
+  p.v_occluded = 1;  // the floor alone
+  p.l_min = 4;
+  p.l_max = 10;
+  const AnticipationWindow window(path, 0.0, 0.04, p);
+  // A square at y = 1 between the camera and the sheet, facing up.
+  const Vec3 a(-1, 1, 1), b(1, 1, 1), c(1, 1, -1), d(-1, 1, -1);
+  const std::vector<DepthImage> hiding = occlusion_images(window, [&](DepthImage& image, double) { image.draw({{a, b, c}, {a, c, d}}); }, p);
+  const std::vector<DepthImage> open = occlusion_images(window, [&](DepthImage&, double) {}, p);
+  const double f = 360 / std::tan(20 * M_PI / 180);
+  const std::vector<Mat2> no_motion(static_cast<std::size_t>(m.face_capacity()), Mat2::Zero());
+  auto finest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[1]); };
+  auto coarsest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[0]); };
+  for (const bool hidden : {true, false}) {
+    ViewSizing view(path, p, 0.0, 0.04);
+    view.evaluate(m, hidden ? &hiding : &open);
+    EXPECT_EQ(view.counts().hidden, hidden ? 2 : 0);
+    auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
+    for (FaceId face : m.faces()) sizing[face] = Mat2::Identity() / (0.001 * 0.001);  // 1 mm edges
+    view.modify(m, no_motion, sizing);
+    for (FaceId face : m.faces()) {
+      EXPECT_EQ(view.reasons()[static_cast<std::size_t>(face.idx)], hidden ? ViewReason::hidden : ViewReason::seen);
+      EXPECT_NEAR(finest_edge(sizing[face]), 4 * 5 / f, 1e-6);
+    }
+    for (FaceId face : m.faces()) sizing[face] = Mat2::Identity();  // 1 m edges
+    view.modify(m, no_motion, sizing);
+    for (FaceId face : m.faces()) EXPECT_NEAR(coarsest_edge(sizing[face]), hidden ? 1.0 : 10 * 5 / f, 1e-6);
+  }
+}
+
 // Screen length, in pixels, of the shortest edge the tensor allows along material direction d.
 double screen_edge(const Mat2& m, const Mat23& j, const Mat32& f, const Vec2& d) {
   const Vec2 u = d.normalized() / std::sqrt(d.normalized().dot(m * d.normalized()));
