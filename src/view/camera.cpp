@@ -31,12 +31,17 @@ double Camera::blur_circle_pixels(double depth) const {
   return on_sensor / (1e-3 * sensor_height_mm) * height;
 }
 
-Vec2 Camera::project(const Vec3& x, double* depth) const {
-  const auto [r, u, f] = basis();
+Vec2 Camera::project(const Vec3& x, double* depth) const { return Projection(*this)(x, depth); }
+
+Projection::Projection(const Camera& camera)
+    : basis(camera.basis()), position(camera.position), focal(camera.focal_pixels()), half_width(0.5 * camera.width), half_height(0.5 * camera.height) {}
+
+Vec2 Projection::operator()(const Vec3& x, double* depth) const {
+  const auto& [r, u, f] = basis;
   const Vec3 p = x - position;
-  const double z = p.dot(f), fp = focal_pixels();
+  const double z = p.dot(f);
   if (depth) *depth = z;
-  return Vec2(0.5 * width + fp * p.dot(r) / z, 0.5 * height - fp * p.dot(u) / z);
+  return Vec2(half_width + focal * p.dot(r) / z, half_height - focal * p.dot(u) / z);
 }
 
 Mat23 Camera::projection_jacobian(const Vec3& x) const {

@@ -49,6 +49,16 @@ struct Camera {
   std::array<Vec3, 8> frustum_corners() const;
 };
 
+// A camera's projection to pixels with its basis and focal length worked out once, for many
+// points: the same pixels and depths, bit for bit, as Camera::project.
+struct Projection {
+  explicit Projection(const Camera& camera);
+  Vec2 operator()(const Vec3& x, double* depth = nullptr) const;
+  std::array<Vec3, 3> basis;  // right, up, forward
+  Vec3 position;
+  double focal = 0, half_width = 0, half_height = 0;  // pixels
+};
+
 // A camera's view frustum, precomputed once for many faces.
 struct Frustum {
   explicit Frustum(const Camera& camera);

@@ -8,6 +8,7 @@ namespace vdc {
 
 DepthImage::DepthImage(const Camera& camera, double scale)
     : camera_(camera),
+      projection_(camera),
       scale_(scale),
       width_(std::max(1, static_cast<int>(std::lround(camera.width * scale)))),
       height_(std::max(1, static_cast<int>(std::lround(camera.height * scale)))) {
@@ -26,7 +27,7 @@ void DepthImage::draw(const std::vector<Triangle>& triangles) {
   for (const Triangle& t : triangles) {
     std::array<Vec2, 3> screen;
     std::array<double, 3> z{};
-    for (int k = 0; k < 3; ++k) screen[static_cast<std::size_t>(k)] = scale_ * camera_.project(t[static_cast<std::size_t>(k)], &z[static_cast<std::size_t>(k)]);
+    for (int k = 0; k < 3; ++k) screen[static_cast<std::size_t>(k)] = scale_ * projection_(t[static_cast<std::size_t>(k)], &z[static_cast<std::size_t>(k)]);
     if (z[0] < camera_.near || z[1] < camera_.near || z[2] < camera_.near) continue;
     // 1/z is linear on the screen: its gradient, so that each pixel keeps the triangle's farthest
     // depth over the pixel's square rather than at its centre. A surface then never hides its own
@@ -71,7 +72,7 @@ void DepthImage::erode(int erosion) {
 
 int DepthImage::hidden_levels(const Vec3& x, double margin) const {
   double z = 0;
-  const Vec2 p = scale_ * camera_.project(x, &z);
+  const Vec2 p = scale_ * projection_(x, &z);
   if (!(z >= camera_.near) || !std::isfinite(p.x()) || !std::isfinite(p.y())) return 0;
   const auto px = static_cast<int>(std::floor(p.x())), py = static_cast<int>(std::floor(p.y()));
   if (px < 0 || py < 0 || px >= width_ || py >= height_) return 0;

@@ -68,6 +68,7 @@ class DepthImage {
 
  private:
   Camera camera_;
+  Projection projection_;  // the camera's
   double scale_;
   int width_, height_;
   // depth_[r]: eroded by r pixels, row-major, +infinity where nothing is near enough to hide
