@@ -21,6 +21,7 @@
 #include "physics/cloth_model.hpp"
 #include "scene/body.hpp"
 #include "scene/bvh_motion.hpp"
+#include "scene/crowd.hpp"
 #include "scene/dressing.hpp"
 #include "scene/figure.hpp"
 #include "scene/fitting.hpp"
@@ -332,11 +333,11 @@ FigureMeasure reference_figure(const BodyParams& body) {
 // The procedural garments a character wears made again for it, in the pose they are put on in
 // (fitting.hpp), each cut in the same rows so its handles hold the same nodes.
 // `start_time` and `shot` bound the run's time: the arms' reach is taken over it.
-void fit_garments(const JsonValue& scene, std::vector<GarmentSpec>& garments, const std::vector<GarmentMaking>& making,
+void fit_garments(const std::vector<JsonValue>& entries, std::vector<GarmentSpec>& garments, const std::vector<GarmentMaking>& making,
                   const std::vector<std::size_t>& worn, const Character& wearer, const std::string& wearer_name, double start_time,
                   double shot) {
   const Pose& pose = wearer.dressing_pose();
-  const JsonValue first = scene.at("garments").items()[worn.front()];
+  const JsonValue& first = entries[worn.front()];
   std::optional<GarmentFit> fit;
   std::optional<FigureMeasure> figure;
   const FigureMeasure reference = reference_figure(wearer.body_params());
@@ -635,7 +636,8 @@ void check_name(const JsonValue& where, const std::string& name, std::set<std::s
 
 Scene load_scene(const std::string& path) {
   JsonValue j = JsonValue::load_file(path);
-  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "collision", "garments", "obstacles", "camera", "view"});
+  j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "collision", "garments", "obstacles", "crowds", "camera",
+               "view"});
   Scene s;
   s.path = path;
   s.name = j.string_or("name", fs::path(path).stem().string());
@@ -704,16 +706,16 @@ Scene load_scene(const std::string& path) {
   }
   std::set<std::string> names;
   std::vector<GarmentMaking> making;
-  for (const JsonValue& g : j.at("garments").items()) {
+  const SceneEntries entries = scene_entries(j);  // the garments and obstacles, crowds' copies included
+  for (const JsonValue& g : entries.garments) {
     s.garments.push_back(parse_garment(g, path, making.emplace_back()));
     check_name(g.at("name"), s.garments.back().name, names);
   }
-  if (s.garments.empty()) j.at("garments").fail("a scene needs at least one garment");
-  if (auto obs = j.find("obstacles"))
-    for (const JsonValue& o : obs->items()) {
-      s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time));
-      check_name(o.at("name"), s.obstacles.back().name, names);
-    }
+  if (s.garments.empty()) (j.has("garments") ? j.at("garments") : j).fail("a scene needs at least one garment");
+  for (const JsonValue& o : entries.obstacles) {
+    s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time));
+    check_name(o.at("name"), s.obstacles.back().name, names);
+  }
   // The run starts before the shot by the longest pre-roll, characters in their dressing poses,
   // each garment made for the character wearing it.
   double preroll = 0;
@@ -728,16 +730,16 @@ Scene load_scene(const std::string& path) {
       }
   std::vector<std::pair<const ObstacleSpec*, std::vector<std::size_t>>> worn;  // by wearer, in scene order
   for (std::size_t gi = 0; gi < s.garments.size(); ++gi)
-    if (const ObstacleSpec* wearer = garment_wearer(j.at("garments").items()[gi], s.garments[gi], making[gi], s.obstacles)) {
+    if (const ObstacleSpec* wearer = garment_wearer(entries.garments[gi], s.garments[gi], making[gi], s.obstacles)) {
       auto it = std::find_if(worn.begin(), worn.end(), [&](const auto& w) { return w.first == wearer; });
       if (it == worn.end()) it = worn.insert(worn.end(), {wearer, {}});
       it->second.push_back(gi);
     }
   for (const auto& [wearer, garments] : worn)
-    fit_garments(j, s.garments, making, garments, *wearer->character, wearer->name, s.start_time(), s.frames * s.frame_time);
+    fit_garments(entries.garments, s.garments, making, garments, *wearer->character, wearer->name, s.start_time(), s.frames * s.frame_time);
   // Handles attached to a character's joint, now that the obstacles are known.
   for (std::size_t gi = 0; gi < s.garments.size(); ++gi) {
-    const JsonValue garment = j.at("garments").items()[gi];
+    const JsonValue& garment = entries.garments[gi];
     if (!garment.has("handles")) continue;
     const auto handles = garment.at("handles").items();
     for (std::size_t hi = 0; hi < handles.size(); ++hi) {
@@ -761,7 +763,7 @@ Scene load_scene(const std::string& path) {
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     const std::string& group = s.obstacles[k].group;
     if (!group.empty() && std::none_of(s.garments.begin(), s.garments.end(), [&](const GarmentSpec& g) { return g.group == group; }))
-      j.at("obstacles").items()[k].at("group").fail("no garment is in group '" + group + "'");
+      entries.obstacles[k].at("group").fail("no garment is in group '" + group + "'");
   }
   if (auto c = j.find("camera")) s.camera = parse_camera(*c);
   if (auto v = j.find("view")) s.view = parse_view(*v);
