@@ -711,7 +711,8 @@ Scene load_scene(const std::string& path) {
     s.garments.push_back(parse_garment(g, path, making.emplace_back()));
     check_name(g.at("name"), s.garments.back().name, names);
   }
-  if (s.garments.empty()) (j.has("garments") ? j.at("garments") : j).fail("a scene needs at least one garment");
+  if (s.garments.empty())
+    (j.has("garments") ? j.at("garments") : j).fail("a scene needs at least one garment: \"garments\" lists none and no crowd makes one");
   for (const JsonValue& o : entries.obstacles) {
     s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time));
     check_name(o.at("name"), s.obstacles.back().name, names);
