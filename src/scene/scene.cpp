@@ -801,9 +801,13 @@ std::vector<Scene> split_groups(Scene scene) {
     const auto k = static_cast<std::size_t>(std::find(groups.begin(), groups.end(), g.group) - groups.begin());
     parts[k].garments.push_back(std::move(g));
   }
+  std::vector<std::shared_ptr<const ObstacleSpec>> shared;
+  for (const auto& o : obstacles) shared.push_back(o.group.empty() ? nullptr : std::make_shared<const ObstacleSpec>(o));
   for (std::size_t k = 0; k < groups.size(); ++k)
-    for (const auto& o : obstacles)
-      (o.group == groups[k] || o.group.empty() ? parts[k].obstacles : parts[k].hiding).push_back(o);
+    for (std::size_t i = 0; i < obstacles.size(); ++i) {
+      if (obstacles[i].group == groups[k] || obstacles[i].group.empty()) parts[k].obstacles.push_back(obstacles[i]);
+      else parts[k].hiding.push_back(shared[i]);
+    }
   return parts;
 }
 
@@ -820,7 +824,7 @@ Scene keep_groups(Scene scene, const std::vector<std::string>& groups) {
   std::erase_if(scene.garments, [&](const GarmentSpec& g) { return !wanted(g.group); });
   const auto others = std::stable_partition(scene.obstacles.begin(), scene.obstacles.end(),
                                             [&](const ObstacleSpec& o) { return o.group.empty() || wanted(o.group); });
-  scene.hiding.insert(scene.hiding.end(), std::make_move_iterator(others), std::make_move_iterator(scene.obstacles.end()));
+  for (auto o = others; o != scene.obstacles.end(); ++o) scene.hiding.push_back(std::make_shared<const ObstacleSpec>(std::move(*o)));
   scene.obstacles.erase(others, scene.obstacles.end());
   return scene;
 }

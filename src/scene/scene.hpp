@@ -83,8 +83,9 @@ struct Scene {
   std::vector<GarmentSpec> garments;
   std::vector<ObstacleSpec> obstacles;
   // Obstacles of other garment groups (a part of a crowd, split_groups and keep_groups): they
-  // never touch this scene's garments but may hide them from the camera (view.occlusion).
-  std::vector<ObstacleSpec> hiding;
+  // never touch this scene's garments but may hide them from the camera (view.occlusion). One
+  // copy each, shared by the parts (a crowd of K would otherwise hold K - 1 copies a part).
+  std::vector<std::shared_ptr<const ObstacleSpec>> hiding;
   std::optional<CameraPath> camera;  // the `camera` block; --mode view needs it
   ViewParams view;                   // the `view` block
   // Frames simulated before the shot's frame 0 (from time -preroll_frames * frame_time, never

@@ -98,7 +98,6 @@ void Simulation::check_options_and_collect_obstacles() {
     obstacle_faces_.push_back(collision_mesh(o.mesh));
     obstacles_.push_back(o.mesh);
   }
-  for (const auto& o : scene_.hiding) hiding_faces_.push_back(collision_mesh(o.mesh));
 }
 
 void Simulation::place_obstacles() {
@@ -226,15 +225,15 @@ OccluderDrawing Simulation::occluders_at(const std::vector<CollisionMesh>& garme
     image = depth_cache_->at(t, image.camera(), scene_.view.occlusion_scale, [&] {
       std::vector<Triangle> triangles;
       const Frustum frustum(image.camera());
-      auto stand = [&](const ObstacleSpec& spec, const CollisionMesh& mesh) {
+      auto stand = [&](const ObstacleSpec& spec) {
         const auto [centre, radius] = spec.reach_at(t);
         if (radius >= 0 && ball_outside(frustum, centre, radius)) return;  // hides nothing in frame
         const std::vector<Vec3> x = spec.positions_at(t);
-        for (const auto& face : mesh.faces)
-          triangles.push_back({x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])], x[static_cast<std::size_t>(face[2])]});
+        auto at = [&](FaceId f, int k) { return x[static_cast<std::size_t>(spec.mesh.face_node(f, k).idx)]; };
+        for (FaceId f : spec.mesh.faces()) triangles.push_back({at(f, 0), at(f, 1), at(f, 2)});
       };
-      for (std::size_t o = 0; o < scene_.obstacles.size(); ++o) stand(scene_.obstacles[o], obstacle_faces_[o]);
-      for (std::size_t o = 0; o < scene_.hiding.size(); ++o) stand(scene_.hiding[o], hiding_faces_[o]);
+      for (const ObstacleSpec& o : scene_.obstacles) stand(o);
+      for (const auto& o : scene_.hiding) stand(*o);
       return triangles;
     });
     std::vector<Triangle> triangles;

@@ -170,7 +170,6 @@ class Simulation {
   std::vector<Mesh> garments_;
   std::vector<Mesh> obstacles_;  // placed at time()
   std::vector<CollisionMesh> obstacle_faces_;  // the obstacles' faces, for collisions and sizing
-  std::vector<CollisionMesh> hiding_faces_;    // scene_.hiding's faces, for occlusion
   // Depth images of the bodies (view.occlusion), shared with the other garment groups of the
   // scene when stepped in an Ensemble.
   std::shared_ptr<DepthCache> depth_cache_ = std::make_shared<DepthCache>();
