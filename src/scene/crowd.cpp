@@ -104,7 +104,7 @@ std::string numbered(const std::string& name, int k, int count) {
 }  // namespace
 
 std::vector<CrowdCopy> place_crowd(const JsonValue& crowd) {
-  crowd.only_keys({"name", "count", "layout", "centre", "heading", "start", "speed", "motions", "motion_order", "seed", "template"});
+  crowd.only_keys({"name", "count", "layout", "centre", "heading", "start", "speed", "motions", "motion_order", "mirror", "seed", "template"});
   const std::string name = crowd.at("name").string();
   const long long count = crowd.at("count").integer();
   if (count < 1 || count > 10000) crowd.at("count").fail("must be between 1 and 10,000");
@@ -124,6 +124,12 @@ std::vector<CrowdCopy> place_crowd(const JsonValue& crowd) {
   }
   const std::string order = crowd.string_or("motion_order", "cycle");
   if (order != "cycle" && order != "random") crowd.at("motion_order").fail("expected \"cycle\" or \"random\"");
+  std::string mirror = "none";
+  if (const auto m = crowd.find("mirror")) {
+    const bool word = m->is_string() && (m->string() == "alternate" || m->string() == "random");
+    if (!word && !m->raw().is_boolean()) m->fail("expected true, false, \"alternate\" or \"random\"");
+    mirror = word ? m->string() : m->boolean() ? "all" : "none";
+  }
   std::vector<CrowdCopy> copies;
   for (int k = 0; k < count; ++k) {
     CrowdCopy c;
@@ -134,6 +140,7 @@ std::vector<CrowdCopy> place_crowd(const JsonValue& crowd) {
     c.start = start.draw(draws);
     c.speed = speed.draw(draws);
     if (!motions.empty()) c.motion = motions[order == "cycle" ? static_cast<std::size_t>(k) % motions.size() : draws.below(motions.size())];
+    c.mirror = mirror == "all" || (mirror == "alternate" && k % 2 == 1) || (mirror == "random" && draws.below(2) == 1);
     copies.push_back(c);
   }
   return copies;
@@ -173,6 +180,7 @@ SceneEntries scene_entries(const JsonValue& scene) {
       figure["start"] = start + c.start;
       figure["speed"] = speed * c.speed;
       if (!c.motion.empty()) figure["motion"] = c.motion;
+      if (c.mirror) figure["mirror"] = true;
       entries.obstacles.emplace_back(nlohmann::json{{"name", c.group}, {"group", c.group}, {"character", std::move(figure)}, {"transform", place}},
                                      crowd.file(), made.path() + "[" + c.group + "]");
     }

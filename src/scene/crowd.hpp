@@ -20,6 +20,7 @@ struct CrowdCopy {
   double start = 0;    // s, added to the template character's clip start
   double speed = 1;    // times the template character's speed
   std::string motion;  // the motion file as written (relative to the scene), empty: the template's
+  bool mirror = false; // the motion mirrored left for right (the character's "mirror")
 };
 
 // The copies of one crowd block, in order, every random draw from its seed.

@@ -426,7 +426,8 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
   if (j.has("mesh") == j.has("character")) j.fail("an obstacle needs exactly one of \"mesh\" and \"character\"");
   if (auto c = j.find("character")) {
     // The character places itself (its transform applies to the skinned body every frame).
-    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter", "joint_names", "first_frame", "preroll"});
+    c->only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter", "joint_names", "first_frame", "preroll",
+                  "mirror"});
     const JsonValue file = c->at("motion");
     const std::string path = resolve(file, scene_path);
     Motion motion = with_key(file, [&] { return read_bvh(path); });
@@ -442,6 +443,13 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
         rename_joints(motion.skeleton, renames);
       } catch (const std::invalid_argument& e) {
         names->fail(std::string("the motion has no joint '") + e.what() + "' to rename");
+      }
+    }
+    if (c->boolean_or("mirror", false)) {
+      try {
+        motion = mirrored(motion);
+      } catch (const std::invalid_argument& e) {
+        c->at("mirror").fail(std::string("cannot mirror the motion: ") + e.what());
       }
     }
     const double scale = c->positive_or("scale", 1.0);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace vdc {
 
@@ -81,6 +83,51 @@ void scale_lengths(Motion& motion, double factor) {
       if (j.channels[c] == Channel::XPosition || j.channels[c] == Channel::YPosition || j.channels[c] == Channel::ZPosition)
         for (auto& frame : motion.frames) frame[static_cast<std::size_t>(j.first_channel) + c] *= factor;
   }
+}
+
+namespace {
+
+// The name with Left and Right swapped (the project's, CMU's and Mixamo's names mark the side
+// so); the name itself for a joint on the middle line.
+std::string partner_name(const std::string& name) {
+  std::string out = name;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"Left", "Right"}, {"Right", "Left"}}) {
+    const auto at = name.find(from);
+    if (at != std::string::npos) return out.replace(at, from.size(), to);
+  }
+  return out;
+}
+
+}  // namespace
+
+// The mirror image of a motion (a reflection of its figure, e.g. for a crowd's copies).
+Motion mirrored(const Motion& motion) {
+  const auto& joints = motion.skeleton.joints;
+  std::vector<std::size_t> partner(joints.size());
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const std::string wanted = partner_name(joints[j].name);
+    const auto it = std::find_if(joints.begin(), joints.end(), [&](const Joint& x) { return x.name == wanted; });
+    if (it == joints.end() || it->channels != joints[j].channels || (it->parent < 0) != (joints[j].parent < 0))
+      throw std::invalid_argument("joint '" + joints[j].name + "' has no partner '" + wanted + "' with the same channels");
+    partner[j] = static_cast<std::size_t>(it - joints.begin());
+  }
+  Motion out = motion;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const Joint& from = joints[partner[j]];
+    out.skeleton.joints[j].offset = Vec3(-from.offset.x(), from.offset.y(), from.offset.z());
+  }
+  for (std::size_t f = 0; f < motion.frames.size(); ++f)
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      const Joint& to = joints[j];
+      const Joint& from = joints[partner[j]];
+      for (std::size_t c = 0; c < to.channels.size(); ++c) {
+        const double v = motion.frames[f][static_cast<std::size_t>(from.first_channel) + c];
+        const Channel channel = to.channels[c];
+        const bool negated = channel == Channel::XPosition || channel == Channel::YRotation || channel == Channel::ZRotation;
+        out.frames[f][static_cast<std::size_t>(to.first_channel) + c] = negated ? -v : v;
+      }
+    }
+  return out;
 }
 
 }  // namespace vdc

@@ -77,6 +77,31 @@ TEST(Character, ItsReachHoldsTheBodyThroughTheWholeMotion) {
   EXPECT_EQ(moved.obstacles[0].reach_at(0.5).second, -1.0);
 }
 
+// "mirror": the character dances the mirror image: its left hand where the unmirrored one's
+// right hand is, reflected in the plane x = 0 it is placed on.
+TEST(Character, AMirroredCharacterDancesTheMirrorImage) {
+  const std::string motion = std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh";
+  auto load = [&](bool mirror) {
+    Scene s = load_scene(write_scene(R"({"name": "d", "character": {"motion": ")" + motion + R"(", "resolution": 0.05, "mirror": )" +
+                                     (mirror ? "true" : "false") + "}}"));
+    fs::remove_all(fs::path(s.path).parent_path());
+    return s.obstacles[0].character;
+  };
+  const auto plain = load(false), mirror = load(true);
+  const auto& skeleton = plain->motion().skeleton;
+  int left = -1, right = -1;
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
+    if (skeleton.joints[j].name == "LeftHand") left = static_cast<int>(j);
+    if (skeleton.joints[j].name == "RightHand") right = static_cast<int>(j);
+  }
+  ASSERT_GE(left, 0);
+  ASSERT_GE(right, 0);
+  for (double t : {0.0, 1.3, 4.1}) {
+    const Vec3 r = plain->joint_transform(right, t).translation(), l = mirror->joint_transform(left, t).translation();
+    EXPECT_LT((l - Vec3(-r.x(), r.y(), r.z())).norm(), 1e-9) << "t = " << t;
+  }
+}
+
 TEST(Character, AnObstacleIsAMeshOrACharacter) {
   const std::string motion = std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh";
   const std::string both = write_scene(R"({"name": "d", "mesh": {"sphere": {"radius": 1}}, "character": {"motion": ")" + motion + R"("}})");

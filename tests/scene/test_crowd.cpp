@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/error.hpp"
+#include "scene/bvh_motion.hpp"
 #include "scene/crowd.hpp"
 #include "scene/scene.hpp"
 
@@ -100,6 +101,55 @@ TEST(Crowd, RandomPlacesAndVariationsComeFromTheSeed) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("crowds[0].layout.random"), std::string::npos) << e.what();
   }
+}
+
+// The mirror image of the dance: every joint where its partner (Left for Right) was, reflected
+// in x = 0, at every frame looked at; mirrored twice, the dance itself.
+TEST(Crowd, AMirroredMotionMovesEachJointAsItsPartnerReflected) {
+  const Motion dance = read_bvh(std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh");
+  const Motion mirror = mirrored(dance);
+  const auto& joints = dance.skeleton.joints;
+  auto index = [&](const std::string& name) {
+    for (std::size_t j = 0; j < joints.size(); ++j)
+      if (joints[j].name == name) return j;
+    ADD_FAILURE() << "no joint " << name;
+    return std::size_t{0};
+  };
+  int sided = 0;
+  for (std::size_t f : {std::size_t{0}, dance.frames.size() / 3, dance.frames.size() - 1}) {
+    const auto before = dance.world(dance.frame_pose(f)), after = mirror.world(mirror.frame_pose(f));
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      std::string partner = joints[j].name;
+      if (partner.find("Left") != std::string::npos) partner.replace(partner.find("Left"), 4, "Right");
+      else if (partner.find("Right") != std::string::npos) partner.replace(partner.find("Right"), 5, "Left");
+      sided += partner != joints[j].name;
+      const Vec3 p = before[index(partner)].translation();
+      EXPECT_LT((after[j].translation() - Vec3(-p.x(), p.y(), p.z())).norm(), 1e-9) << joints[j].name << " frame " << f;
+    }
+  }
+  EXPECT_GT(sided, 20);
+  const Motion twice = mirrored(mirror);
+  EXPECT_EQ(twice.frames, dance.frames);
+  for (std::size_t j = 0; j < joints.size(); ++j) EXPECT_EQ(twice.skeleton.joints[j].offset, joints[j].offset);
+  Motion one_sided = dance;
+  one_sided.skeleton.joints[index("RightArm")].name = "RightWing";
+  try {
+    mirrored(one_sided);
+    ADD_FAILURE() << "mirrored a figure with a left arm and no right one";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("LeftArm"), std::string::npos) << e.what();
+  }
+  // A crowd mirrors every other copy, every copy, or copies drawn from its seed.
+  const auto alternate = copies_of(R"({"name": "m", "count": 4, "layout": {"grid": {}}, "mirror": "alternate", "template": {}})");
+  EXPECT_FALSE(alternate[0].mirror);
+  EXPECT_TRUE(alternate[1].mirror);
+  EXPECT_FALSE(alternate[2].mirror);
+  EXPECT_TRUE(alternate[3].mirror);
+  for (const auto& c : copies_of(R"({"name": "m", "count": 3, "layout": {"grid": {}}, "mirror": true, "template": {}})")) EXPECT_TRUE(c.mirror);
+  int drawn = 0;
+  for (const auto& c : copies_of(R"({"name": "m", "count": 40, "layout": {"grid": {}}, "mirror": "random", "template": {}})")) drawn += c.mirror;
+  EXPECT_GT(drawn, 10);
+  EXPECT_LT(drawn, 30);
 }
 
 fs::path write_crowd_scene(const std::string& name, const std::string& crowd) {
