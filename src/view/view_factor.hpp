@@ -49,6 +49,10 @@ struct ViewParams {
   // nothing hides is the inside of a garment in view and counts as facing the camera.
   bool occlusion = false;
   double v_occluded = 0.2;  // factor of hidden faces that face the camera (a scene's default: its v_back)
+  // The screen-space floor (l_min, and the lens's) bounds every face in frame, turned away or
+  // hidden too, not only the faces seen: no cloth in frame is finer than the cloth seen beside
+  // it, whatever its motion asks (always so with occlusion).
+  bool floor_in_frame = false;
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.
   bool motion_anticipation = true;

@@ -89,9 +89,10 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
                                                  : ViewReason::back_facing;
     kind[static_cast<std::size_t>(i)] = seen_as;
     visible_[at] = seen_as == ViewReason::seen;
-    // With occlusion, what is hidden in frame is no finer than what is seen beside it: the
-    // screen-space floor bounds every face in frame (l_max only the seen ones).
-    floored_[at] = visible_[at] || (params_.occlusion && seen_as != ViewReason::out_of_frame);
+    // With occlusion or floor_in_frame, what is hidden or turned away in frame is no finer than
+    // what is seen beside it: the screen-space floor bounds every face in frame (l_max only the
+    // seen ones).
+    floored_[at] = visible_[at] || ((params_.occlusion || params_.floor_in_frame) && seen_as != ViewReason::out_of_frame);
     reason_[at] = seen_as;
     if (lens_blurs_ && floored_[at]) {
       const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;

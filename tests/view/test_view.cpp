@@ -189,6 +189,32 @@ TEST(ViewSizing, HiddenFacesKeepTheScreenSpaceFloorButNotTheCeiling) {
   }
 }
 
+// floor_in_frame: a face turned away in frame is no finer than l_min on screen either, whatever
+// its motion asks (1 mm edges for the velocity criterion become 4 * 5 / f); without it only v_back
+// coarsens it, and the motion keeps its 1 mm.
+TEST(ViewSizing, FloorInFrameBoundsTheFacesTurnedAwayToo) {
+  Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
+  Camera lens = front_camera();
+  lens.up = Vec3(0, 0, 1);
+  const CameraPath path(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from below: turned away
+  const double f = 360 / std::tan(20 * M_PI / 180);
+  const std::vector<Mat2> fast(static_cast<std::size_t>(m.face_capacity()), Mat2::Identity() / (0.001 * 0.001));
+  for (const bool floored : {false, true}) {
+    ViewParams p;
+    p.floor_in_frame = floored;
+    ViewSizing view(path, p, 0.0, 0.04);
+    view.evaluate(m);
+    auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
+    for (FaceId face : m.faces()) sizing[face] = Mat2::Identity() / (0.001 * 0.001);
+    view.modify(m, fast, sizing);
+    for (FaceId face : m.faces()) {
+      EXPECT_EQ(view.reasons()[static_cast<std::size_t>(face.idx)], ViewReason::back_facing);
+      const double finest = 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]);
+      EXPECT_NEAR(finest, floored ? 4 * 5 / f : 0.001, 1e-6);
+    }
+  }
+}
+
 // Screen length, in pixels, of the shortest edge the tensor allows along material direction d.
 double screen_edge(const Mat2& m, const Mat23& j, const Mat32& f, const Vec2& d) {
   const Vec2 u = d.normalized() / std::sqrt(d.normalized().dot(m * d.normalized()));
