@@ -102,6 +102,9 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     }
     factor_[static_cast<std::size_t>(f.idx)] =
         view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
+    // Cloth the camera will show better within the window (eq. 4 raised its factor: a cut to a
+    // close-up of it, a turn) is not floored by how small it looks now.
+    if (!visible_[at] && factor_[at] > view.factor) floored_[at] = 0;
   }
   for (ViewReason k : kind) {
     counts_.visible += k == ViewReason::seen;

@@ -191,7 +191,8 @@ TEST(ViewSizing, HiddenFacesKeepTheScreenSpaceFloorButNotTheCeiling) {
 
 // floor_in_frame: a face turned away in frame is no finer than l_min on screen either, whatever
 // its motion asks (1 mm edges for the velocity criterion become 4 * 5 / f); without it only v_back
-// coarsens it, and the motion keeps its 1 mm.
+// coarsens it, and the motion keeps its 1 mm; nor is it floored when the camera will show it
+// within the window.
 TEST(ViewSizing, FloorInFrameBoundsTheFacesTurnedAwayToo) {
   Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
   Camera lens = front_camera();
@@ -212,6 +213,20 @@ TEST(ViewSizing, FloorInFrameBoundsTheFacesTurnedAwayToo) {
       const double finest = 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]);
       EXPECT_NEAR(finest, floored ? 4 * 5 / f : 0.001, 1e-6);
     }
+  }
+  // A cut to the other side within the window (0.1 s of 0.2): eq. 4 raises the factor, and the
+  // face keeps what its motion asks, ready to be seen.
+  const CameraPath cut(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false}, {0.1, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), true}});
+  ViewParams p;
+  p.floor_in_frame = true;
+  ViewSizing view(cut, p, 0.0, 0.04);
+  view.evaluate(m);
+  auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
+  for (FaceId face : m.faces()) sizing[face] = Mat2::Identity() / (0.001 * 0.001);
+  view.modify(m, fast, sizing);
+  for (FaceId face : m.faces()) {
+    EXPECT_NEAR(view.factors()[static_cast<std::size_t>(face.idx)], 0.5, 1e-12);  // w(0.1 s) = 1 - 0.1 / 0.2
+    EXPECT_NEAR(1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]), 0.001, 1e-9);
   }
 }
 
