@@ -51,8 +51,8 @@ struct ViewParams {
   double v_occluded = 0.2;  // factor of hidden faces that face the camera (a scene's default: its v_back)
   // The screen-space floor (l_min, and the lens's) bounds every face in frame, turned away or
   // hidden too, not only the faces seen: no cloth in frame is finer than the cloth seen beside
-  // it, whatever its motion asks (always so with occlusion), unless eq. 4 raised its factor
-  // (the camera will show it better within the window).
+  // it, whatever its motion asks (always so with occlusion), unless a cut within eq. 4's window
+  // will show it better (eq. 4 raised its factor).
   bool floor_in_frame = false;
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.

@@ -29,6 +29,7 @@ ViewSizing::ViewSizing(const CameraPath& path, const ViewParams& params, double 
   const double open = now_.shutter * frame_time;
   if (params_.motion_blur_scale > 0 && open > 0 && path.cuts_in(time, time + open).empty()) shutter_closes_ = path.at(time + open);
   lens_blurs_ = (params_.defocus_scale > 0 && now_.focus_distance > 0) || shutter_closes_.has_value();
+  cut_ahead_ = !path.cuts_in(time, time + (params_.lead + params_.anticipation) * frame_time).empty();
 }
 
 // Detail finer than the image's blur does not show: the blur circle of a thin lens, and the
@@ -102,9 +103,10 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     }
     factor_[static_cast<std::size_t>(f.idx)] =
         view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
-    // Cloth the camera will show better within the window (eq. 4 raised its factor: a cut to a
-    // close-up of it, a turn) is not floored by how small it looks now.
-    if (!visible_[at] && factor_[at] > view.factor) floored_[at] = 0;
+    // Cloth a cut within the window will show better (eq. 4 raised its factor: a cut to a
+    // close-up of it) is not floored by how small it looks before the cut. Without a cut the
+    // camera's scale changes little over the window, and the floor holds.
+    if (cut_ahead_ && !visible_[at] && factor_[at] > view.factor) floored_[at] = 0;
   }
   for (ViewReason k : kind) {
     counts_.visible += k == ViewReason::seen;

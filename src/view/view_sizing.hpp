@@ -67,6 +67,7 @@ class ViewSizing final : public FaceSizingModifier {
   Camera now_;                 // the camera at time_
   std::optional<Camera> shutter_closes_;  // the camera when the shutter closes (motion blur)
   bool lens_blurs_ = false;               // depth of field or motion blur may raise the floor
+  bool cut_ahead_ = false;                // a cut falls within eq. 4's window
   ViewCounts counts_;
 };
 

@@ -191,8 +191,8 @@ TEST(ViewSizing, HiddenFacesKeepTheScreenSpaceFloorButNotTheCeiling) {
 
 // floor_in_frame: a face turned away in frame is no finer than l_min on screen either, whatever
 // its motion asks (1 mm edges for the velocity criterion become 4 * 5 / f); without it only v_back
-// coarsens it, and the motion keeps its 1 mm; nor is it floored when the camera will show it
-// within the window.
+// coarsens it, and the motion keeps its 1 mm; nor is it floored when a cut within the window will
+// show it, but it is when the camera swings round to it without a cut.
 TEST(ViewSizing, FloorInFrameBoundsTheFacesTurnedAwayToo) {
   Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
   Camera lens = front_camera();
@@ -227,6 +227,19 @@ TEST(ViewSizing, FloorInFrameBoundsTheFacesTurnedAwayToo) {
   for (FaceId face : m.faces()) {
     EXPECT_NEAR(view.factors()[static_cast<std::size_t>(face.idx)], 0.5, 1e-12);  // w(0.1 s) = 1 - 0.1 / 0.2
     EXPECT_NEAR(1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]), 0.001, 1e-9);
+  }
+  // The camera swinging round to the other side without a cut: eq. 4 raises the factor too,
+  // but the camera's scale changes little within the window, and the floor holds.
+  const CameraPath swing(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false},
+                                {0.05, Vec3(5.1, 0, -0.1), Vec3(0.1, 0, -0.1), false},
+                                {0.1, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), false}});
+  ViewSizing swung(swing, p, 0.0, 0.04);
+  swung.evaluate(m);
+  for (FaceId face : m.faces()) sizing[face] = Mat2::Identity() / (0.001 * 0.001);
+  swung.modify(m, fast, sizing);
+  for (FaceId face : m.faces()) {
+    EXPECT_GT(swung.factors()[static_cast<std::size_t>(face.idx)], p.v_back);
+    EXPECT_NEAR(1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]), 4 * 5 / f, 1e-6);
   }
 }
 
