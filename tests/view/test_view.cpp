@@ -197,49 +197,46 @@ TEST(ViewSizing, FloorInFrameBoundsTheFacesTurnedAwayToo) {
   Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
   Camera lens = front_camera();
   lens.up = Vec3(0, 0, 1);
-  const CameraPath path(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from below: turned away
   const double f = 360 / std::tan(20 * M_PI / 180);
   const std::vector<Mat2> fast(static_cast<std::size_t>(m.face_capacity()), Mat2::Identity() / (0.001 * 0.001));
-  for (const bool floored : {false, true}) {
+  // Each face's view factor and the finest edge its tensor allows after modify(), 1 mm asked.
+  auto sized = [&](const CameraPath& path, bool floor_in_frame) {
     ViewParams p;
-    p.floor_in_frame = floored;
+    p.floor_in_frame = floor_in_frame;
     ViewSizing view(path, p, 0.0, 0.04);
     view.evaluate(m);
     auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
     for (FaceId face : m.faces()) sizing[face] = Mat2::Identity() / (0.001 * 0.001);
     view.modify(m, fast, sizing);
+    std::vector<std::pair<double, double>> out;
     for (FaceId face : m.faces()) {
       EXPECT_EQ(view.reasons()[static_cast<std::size_t>(face.idx)], ViewReason::back_facing);
-      const double finest = 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]);
+      out.emplace_back(view.factors()[static_cast<std::size_t>(face.idx)],
+                       1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]));
+    }
+    return out;
+  };
+  const CameraPath below(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false}});  // turned away
+  for (const bool floored : {false, true})
+    for (const auto& [factor, finest] : sized(below, floored)) {
+      EXPECT_EQ(factor, ViewParams{}.v_back);
       EXPECT_NEAR(finest, floored ? 4 * 5 / f : 0.001, 1e-6);
     }
-  }
-  // A cut to the other side within the window (0.1 s of 0.2): eq. 4 raises the factor, and the
-  // face keeps what its motion asks, ready to be seen.
+  // A cut to the other side within the window (0.1 s of 0.2): eq. 4 raises the factor to
+  // w(0.1 s) = 1 - 0.1 / 0.2, and the face keeps what its motion asks, ready to be seen.
   const CameraPath cut(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false}, {0.1, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), true}});
-  ViewParams p;
-  p.floor_in_frame = true;
-  ViewSizing view(cut, p, 0.0, 0.04);
-  view.evaluate(m);
-  auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
-  for (FaceId face : m.faces()) sizing[face] = Mat2::Identity() / (0.001 * 0.001);
-  view.modify(m, fast, sizing);
-  for (FaceId face : m.faces()) {
-    EXPECT_NEAR(view.factors()[static_cast<std::size_t>(face.idx)], 0.5, 1e-12);  // w(0.1 s) = 1 - 0.1 / 0.2
-    EXPECT_NEAR(1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]), 0.001, 1e-9);
+  for (const auto& [factor, finest] : sized(cut, true)) {
+    EXPECT_NEAR(factor, 0.5, 1e-12);
+    EXPECT_NEAR(finest, 0.001, 1e-9);
   }
   // The camera swinging round to the other side without a cut: eq. 4 raises the factor too,
   // but the camera's scale changes little within the window, and the floor holds.
   const CameraPath swing(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false},
                                 {0.05, Vec3(5.1, 0, -0.1), Vec3(0.1, 0, -0.1), false},
                                 {0.1, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), false}});
-  ViewSizing swung(swing, p, 0.0, 0.04);
-  swung.evaluate(m);
-  for (FaceId face : m.faces()) sizing[face] = Mat2::Identity() / (0.001 * 0.001);
-  swung.modify(m, fast, sizing);
-  for (FaceId face : m.faces()) {
-    EXPECT_GT(swung.factors()[static_cast<std::size_t>(face.idx)], p.v_back);
-    EXPECT_NEAR(1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(sizing[face]).eigenvalues()[1]), 4 * 5 / f, 1e-6);
+  for (const auto& [factor, finest] : sized(swing, true)) {
+    EXPECT_GT(factor, ViewParams{}.v_back);
+    EXPECT_NEAR(finest, 4 * 5 / f, 1e-6);
   }
 }
 
