@@ -74,9 +74,6 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   const bool settling = time_ + 1e-9 < params_.settle;  // frame times are sums of frame_time
   std::vector<FaceId> faces;
   for (FaceId f : mesh.faces()) faces.push_back(f);
-  // What the camera sees of each face now: seen, back_facing (turned away, or with occlusion
-  // turned away and hidden), out_of_frame, or hidden (facing it behind something opaque).
-  std::vector<ViewReason> kind(faces.size(), ViewReason::seen);
   const auto n = static_cast<int64_t>(faces.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (int64_t i = 0; i < n; ++i) {
@@ -84,39 +81,37 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     const Vec3 &a = mesh.x(mesh.face_node(f, 0)), &b = mesh.x(mesh.face_node(f, 1)), &c = mesh.x(mesh.face_node(f, 2));
     const FaceView view = face_view(window.frusta.front(), a, b, c, params_, occluders != nullptr ? &occluders->front() : nullptr);
     const auto at = static_cast<std::size_t>(f.idx);
-    const ViewReason seen_as = view.distance > 0 ? ViewReason::out_of_frame
-                               : view.hidden > 0 ? (view.front ? ViewReason::hidden : ViewReason::back_facing)
-                               : view.front      ? ViewReason::seen
-                                                 : ViewReason::back_facing;
-    kind[static_cast<std::size_t>(i)] = seen_as;
-    visible_[at] = seen_as == ViewReason::seen;
+    // What the camera sees of the face now: seen, back_facing (turned away, or with occlusion
+    // turned away and hidden), out_of_frame, or hidden (facing it behind something opaque).
+    reason_[at] = view.distance > 0 ? ViewReason::out_of_frame
+                  : view.hidden > 0 ? (view.front ? ViewReason::hidden : ViewReason::back_facing)
+                  : view.front      ? ViewReason::seen
+                                    : ViewReason::back_facing;
+    visible_[at] = reason_[at] == ViewReason::seen;
+    factor_[at] = view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
     // With occlusion or floor_in_frame, what is hidden or turned away in frame is no finer than
     // what is seen beside it: the screen-space floor bounds every face in frame (l_max only the
-    // seen ones).
-    floored_[at] = visible_[at] || ((params_.occlusion || params_.floor_in_frame) && seen_as != ViewReason::out_of_frame);
-    reason_[at] = seen_as;
+    // seen ones); but cloth a cut within the window will show better (eq. 4 raised its factor:
+    // a cut to a close-up of it) is not floored by how small it looks before the cut. Without a
+    // cut the camera's scale changes little over the window, and the floor holds.
+    const bool shown_after_cut = cut_ahead_ && factor_[at] > view.factor;
+    floored_[at] = visible_[at] ||
+                   ((params_.occlusion || params_.floor_in_frame) && reason_[at] != ViewReason::out_of_frame && !shown_after_cut);
     if (lens_blurs_ && floored_[at]) {
       const Vec3 velocity = (mesh.v(mesh.face_node(f, 0)) + mesh.v(mesh.face_node(f, 1)) + mesh.v(mesh.face_node(f, 2))) / 3.0;
       ViewReason set_by = ViewReason::seen;
       floor_[at] = screen_floor((a + b + c) / 3.0, velocity, &set_by);
       if (visible_[at]) reason_[at] = set_by;
     }
-    factor_[static_cast<std::size_t>(f.idx)] =
-        view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
-    // Cloth a cut within the window will show better (eq. 4 raised its factor: a cut to a
-    // close-up of it) is not floored by how small it looks before the cut. Without a cut the
-    // camera's scale changes little over the window, and the floor holds.
-    if (cut_ahead_ && !visible_[at] && factor_[at] > view.factor) floored_[at] = 0;
-  }
-  for (ViewReason k : kind) {
-    counts_.visible += k == ViewReason::seen;
-    counts_.back_facing += k == ViewReason::back_facing;
-    counts_.out_of_frame += k == ViewReason::out_of_frame;
-    counts_.hidden += k == ViewReason::hidden;
   }
   for (FaceId f : faces) {
-    counts_.defocused += reason_[static_cast<std::size_t>(f.idx)] == ViewReason::defocused;
-    counts_.blurred += reason_[static_cast<std::size_t>(f.idx)] == ViewReason::motion_blurred;
+    const auto at = static_cast<std::size_t>(f.idx);
+    counts_.visible += visible_[at];
+    counts_.back_facing += reason_[at] == ViewReason::back_facing;
+    counts_.out_of_frame += reason_[at] == ViewReason::out_of_frame;
+    counts_.hidden += reason_[at] == ViewReason::hidden;
+    counts_.defocused += reason_[at] == ViewReason::defocused;
+    counts_.blurred += reason_[at] == ViewReason::motion_blurred;
   }
   resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
 }
