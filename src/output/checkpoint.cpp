@@ -49,7 +49,47 @@ uint64_t file_hash(const std::string& path) {
 
 uint64_t executable_hash() { return file_hash("/proc/self/exe"); }
 
+std::string checkpoint_part(const Simulation& part) {
+  BinaryWriter out;
+  out.value<uint64_t>(part.scene().garments.size());
+  for (std::size_t g = 0; g < part.scene().garments.size(); ++g) {
+    out.string(part.scene().garments[g].name);
+    part.garment_mesh(g).write_binary(out);
+  }
+  return out.bytes();
+}
+
+namespace {
+ResumePoint read_part(BinaryReader& in, int frame) {
+  ResumePoint point;
+  point.frame = frame;
+  const auto garments = in.value<uint64_t>();
+  for (uint64_t g = 0; g < garments; ++g) {
+    point.names.push_back(in.string());
+    point.garments.push_back(Mesh::read_binary(in));
+  }
+  return point;
+}
+}  // namespace
+
+ResumePoint read_checkpoint_part(const std::string& bytes, int frame, const std::string& source) {
+  BinaryReader in(bytes.data(), bytes.size());
+  try {
+    ResumePoint point = read_part(in, frame);
+    if (!in.at_end()) in.fail("unexpected bytes after the last garment");
+    return point;
+  } catch (const BinaryFormatError& e) {
+    throw InputError(source, "byte " + std::to_string(e.offset()), e.problem());
+  }
+}
+
 void write_checkpoint(const std::string& path, const Ensemble& run, const Checkpoint& c) {
+  std::vector<std::string> parts;
+  for (const auto& part : run.parts()) parts.push_back(checkpoint_part(*part));
+  write_checkpoint(path, c, run.options().mode, run.frame(), parts);
+}
+
+void write_checkpoint(const std::string& path, const Checkpoint& c, SimMode mode, int frame, const std::vector<std::string>& parts) {
   BinaryWriter out;
   out.string(kMagic);
   out.value(kFormat);
@@ -58,22 +98,16 @@ void write_checkpoint(const std::string& path, const Ensemble& run, const Checkp
   out.value<int32_t>(c.checkpoint_every);
   out.value(c.perturbation.gravity);
   out.value(c.perturbation.resolution);
-  out.string(sim_mode_name(run.options().mode));
-  out.value<int32_t>(run.frame());
+  out.string(sim_mode_name(mode));
+  out.value<int32_t>(frame);
   out.value<int32_t>(c.segments);
   out.value(c.usage.wall_seconds);
   out.value(c.usage.cpu_seconds);
   out.value<int64_t>(c.usage.peak_kib);
   out.value<int64_t>(c.usage.machine.total);
   out.value<int64_t>(c.usage.machine.steal);
-  out.value<uint64_t>(run.parts().size());
-  for (const auto& part : run.parts()) {
-    out.value<uint64_t>(part->scene().garments.size());
-    for (std::size_t g = 0; g < part->scene().garments.size(); ++g) {
-      out.string(part->scene().garments[g].name);
-      part->garment_mesh(g).write_binary(out);
-    }
-  }
+  out.value<uint64_t>(parts.size());
+  for (const std::string& part : parts) out.raw(part.data(), part.size());
   const uint64_t sum = fnv1a64(out.bytes().data(), out.bytes().size());
   out.value(sum);
 
@@ -125,16 +159,7 @@ Checkpoint read_checkpoint(const std::string& path) {
               std::to_string(c.checkpoint_every) + ", perturbations " + std::to_string(c.perturbation.gravity) + " and " +
               std::to_string(c.perturbation.resolution) + ": not a checkpoint's");
     const auto parts = in.value<uint64_t>();
-    for (uint64_t p = 0; p < parts; ++p) {
-      ResumePoint point;
-      point.frame = c.frame;
-      const auto garments = in.value<uint64_t>();
-      for (uint64_t g = 0; g < garments; ++g) {
-        point.names.push_back(in.string());
-        point.garments.push_back(Mesh::read_binary(in));
-      }
-      c.parts.push_back(std::move(point));
-    }
+    for (uint64_t p = 0; p < parts; ++p) c.parts.push_back(read_part(in, c.frame));
     if (!in.at_end()) in.fail("unexpected bytes after the last garment");
   } catch (const BinaryFormatError& e) {
     throw InputError(path, "byte " + std::to_string(e.offset()), e.problem());

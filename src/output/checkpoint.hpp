@@ -31,9 +31,20 @@ uint64_t file_hash(const std::string& path);
 // file_hash of this program (/proc/self/exe): another build may simulate differently.
 uint64_t executable_hash();
 
-// Writes `c` (but its parts: those come from `run`, at its current frame) to `path`, through a
-// temporary file flushed to disk and renamed into place, so a run stopped while writing keeps
-// its previous checkpoint. Throws InputError, leaving no temporary file, when it cannot.
+// One group's part of a checkpoint (its garments' names and meshes now), as bytes: a run made by
+// several processes gathers each group's from the process stepping it, and hands a group over
+// to another process in the same form.
+std::string checkpoint_part(const Simulation& part);
+// A part's bytes read back as where the group resumes at `frame`; throws InputError naming
+// `source` when they are not a part.
+ResumePoint read_checkpoint_part(const std::string& bytes, int frame, const std::string& source);
+
+// Writes `c` (but its parts) with the mode and frame given and the groups' `parts`
+// (checkpoint_part, in group order) to `path`, through a temporary file flushed to disk and
+// renamed into place, so a run stopped while writing keeps its previous checkpoint. Throws
+// OutputError, leaving no temporary file, when it cannot.
+void write_checkpoint(const std::string& path, const Checkpoint& c, SimMode mode, int frame, const std::vector<std::string>& parts);
+// The same with the parts of `run` (every group here), at its current frame.
 void write_checkpoint(const std::string& path, const Ensemble& run, const Checkpoint& c);
 
 // Reads a checkpoint; throws InputError naming the file (and the byte) when it is missing,

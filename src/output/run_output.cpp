@@ -132,6 +132,12 @@ RunOutput::RunOutput(const std::string& dir, int resume_at) : dir_(dir) {
   if (!stats_) throw OutputError(stats_path, "cannot write");
 }
 
+RunOutput RunOutput::joining(const std::string& dir) {
+  RunOutput joined;
+  joined.dir_ = dir;
+  return joined;
+}
+
 void RunOutput::append_log(const std::string& line) const {
   std::ofstream log(dir_ + "/" + kLogFile, std::ios::app);
   log << line << "\n";
@@ -148,7 +154,8 @@ void RunOutput::tally(int faces, double seconds) {
 }
 
 void RunOutput::write_frame(const Ensemble& run, int frame) const {
-  for (const auto& part : run.parts()) {
+  for (std::size_t k = 0; k < run.parts().size(); ++k) {
+    const auto& part = run.parts()[k];
     const Scene& scene = part->scene();
     for (std::size_t g = 0; g < scene.garments.size(); ++g) {
       const std::string& name = scene.garments[g].name;
@@ -161,10 +168,10 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
           !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), view, kFrameDecimals))
         throw OutputError(frame_file(dir_, "cloth", name, frame, ".ply"), "cannot write");
     }
-    // Obstacles of no group are in every part: written once, from the first.
+    // Obstacles of no group are in every part: written once, from group 0's.
     for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
       const ObstacleSpec& spec = scene.obstacles[o];
-      if ((part == run.parts().front() || !spec.group.empty()) &&
+      if ((run.here()[k] == 0 || !spec.group.empty()) &&
           !write_obj(part->obstacle_mesh(o), frame_file(dir_, "obstacle", spec.name, frame), ObjWriting{false, kFrameDecimals}))
         throw OutputError(frame_file(dir_, "obstacle", spec.name, frame), "cannot write");
     }
@@ -192,10 +199,18 @@ bool run_is_done(const std::string& dir, int frames) {
   return j.is_object() && j.value("status", "") == "done" && j.value("frames", -1) == frames;
 }
 
-void RunOutput::write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
-                              int segments, int frames_done, int threads, const Perturbation& perturbation) const {
+std::vector<GarmentSize> garment_sizes(const Ensemble& run) {
+  std::vector<GarmentSize> sizes;
+  for (const auto& part : run.parts())
+    for (std::size_t g = 0; g < part->scene().garments.size(); ++g)
+      sizes.push_back({part->garment_mesh(g).num_faces(), part->garment_mesh(g).num_nodes()});
+  return sizes;
+}
+
+nlohmann::json RunOutput::summary(const Ensemble& run, const std::vector<GarmentSize>& sizes, const std::string& status, const std::string& error,
+                                  const ResourceUsage& usage, int segments, int frames_done, int threads, const Perturbation& perturbation) const {
   nlohmann::json j;
-  const Scene& scene = run.parts().front()->scene();
+  const Scene& scene = run.group_scene(0);
   j["scene"] = run.path();
   j["name"] = run.name();
   j["status"] = status;
@@ -206,7 +221,7 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   const MachineDescription machine = describe_machine();
   j["machine"] = {{"host", machine.host}, {"cpu", machine.cpu}, {"cores", machine.cores}};
   j["finished"] = utc_now_iso8601();
-  j["groups"] = run.parts().size();
+  j["groups"] = run.groups();
   j["frames"] = frames_done;
   j["frame_time"] = scene.frame_time;
   j["substeps"] = scene.substeps;
@@ -222,24 +237,29 @@ void RunOutput::write_summary(const Ensemble& run, const std::string& status, co
   j["seconds_per_frame"] = {{"mean", rows_ ? sum_seconds_ / rows_ : 0.0}, {"max", max_seconds_}};
   j["faces"] = {{"min", min_faces_}, {"max", max_faces_}, {"mean", rows_ ? sum_faces_ / rows_ : 0.0}};
   nlohmann::json garments = nlohmann::json::array();
-  for (const auto& part : run.parts())
-    for (std::size_t g = 0; g < part->scene().garments.size(); ++g) {
-      const GarmentSpec& spec = part->scene().garments[g];
-      const Mesh& mesh = part->garment_mesh(g);
-      nlohmann::json garment{{"name", spec.name}, {"material", spec.material.name}, {"faces", mesh.num_faces()}, {"vertices", mesh.num_nodes()}};
+  std::size_t next = 0;
+  for (int group = 0; group < run.groups(); ++group)
+    for (const GarmentSpec& spec : run.group_scene(group).garments) {
+      const GarmentSize size = next < sizes.size() ? sizes[next] : GarmentSize{};
+      ++next;
+      nlohmann::json garment{{"name", spec.name}, {"material", spec.material.name}, {"faces", size.faces}, {"vertices", size.vertices}};
       if (!spec.fitted_to.empty()) garment["fitted"] = {{"to", spec.fitted_to}, {"ease", spec.ease}};
       garments.push_back(garment);
     }
   j["garments"] = garments;
   // The characters as the run made them: their build, and how they come to their first pose.
   nlohmann::json characters = nlohmann::json::array();
-  for (const auto& part : run.parts())
-    for (const ObstacleSpec& o : part->scene().obstacles)
+  for (int group = 0; group < run.groups(); ++group)
+    for (const ObstacleSpec& o : run.group_scene(group).obstacles)
       if (o.character && std::none_of(characters.begin(), characters.end(), [&](const nlohmann::json& c) { return c["name"] == o.name; }))
         characters.push_back({{"name", o.name}, {"build", o.character->body_params().build}, {"preroll", o.character->preroll()}});
   j["characters"] = characters;
+  return j;
+}
+
+void RunOutput::write_summary(const nlohmann::json& summary) const {
   std::ofstream out(dir_ + "/summary.json");
-  out << j.dump(2) << "\n";
+  out << summary.dump(2) << "\n";
   if (!out) throw OutputError(dir_ + "/summary.json", "cannot write");
 }
 

@@ -4,6 +4,9 @@
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "core/resource_usage.hpp"
 #include "sim/ensemble.hpp"
@@ -20,6 +23,13 @@ using FrameFiles = std::map<std::string, std::string>;
 // missing or holds no frame mesh.
 std::map<int, FrameFiles> read_frame_files(const std::string& run_dir);
 
+// A garment's size at the end of the run, as summary.json gives it.
+struct GarmentSize {
+  int faces = 0, vertices = 0;
+};
+// The sizes of the garments of the groups stepped in `run`, group by group in scene order.
+std::vector<GarmentSize> garment_sizes(const Ensemble& run);
+
 // Whether DIR/summary.json says the run is done with `frames` frames (a resume has nothing to do).
 bool run_is_done(const std::string& dir, int frames);
 
@@ -32,19 +42,28 @@ class RunOutput {
   // that frame and removes the later ones (made after its last checkpoint). Throws InputError
   // when DIR's stats.csv does not hold every frame up to `resume_at`.
   RunOutput(const std::string& dir, int resume_at);
-  void write_frame(const Ensemble& run, int frame) const;  // meshes of every garment and obstacle
+  // One of the other processes of a run made by several: writes its groups' frames and log
+  // lines into DIR, which the first process has set up, and no table.
+  static RunOutput joining(const std::string& dir);
+  // Meshes of every garment and obstacle of the groups stepped in `run` (the obstacles of no
+  // group with group 0's).
+  void write_frame(const Ensemble& run, int frame) const;
   void write_stats_row(const FrameStats& s);
   // Adds a line to DIR/log.txt (a new run starts it empty, a resumed one goes on with it); a
   // log that cannot be written does not stop the run (the error stream still has the line).
   void append_log(const std::string& line) const;
-  // status: "done" or "failed"; error: message when failed. `usage` covers all `segments`
-  // processes the run was made in; `perturbation`: what the scene was perturbed by.
-  void write_summary(const Ensemble& run, const std::string& status, const std::string& error, const ResourceUsage& usage,
-                     int segments, int frames_done, int threads, const Perturbation& perturbation) const;
+  // summary.json's contents. status: "done" or "failed"; error: message when failed. `sizes`:
+  // every group's garments' (garment_sizes, all groups in order); `usage` covers all
+  // `segments` processes the run was made in; `perturbation`: what the scene was perturbed by.
+  nlohmann::json summary(const Ensemble& run, const std::vector<GarmentSize>& sizes, const std::string& status, const std::string& error,
+                         const ResourceUsage& usage, int segments, int frames_done, int threads, const Perturbation& perturbation) const;
+  void write_summary(const nlohmann::json& summary) const;
   const std::string& dir() const { return dir_; }
 
  private:
   void tally(int faces, double seconds);  // one more row in the summary's statistics
+
+  RunOutput() = default;
 
   std::string dir_;
   std::ofstream stats_;

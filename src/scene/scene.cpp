@@ -820,6 +820,14 @@ std::vector<Scene> split_groups(Scene scene) {
   return parts;
 }
 
+std::vector<double> group_faces(const Scene& scene) {
+  const std::vector<std::string> groups = garment_groups(scene.garments);
+  std::vector<double> faces(groups.size(), 0.0);
+  for (const auto& g : scene.garments)
+    faces[static_cast<std::size_t>(std::find(groups.begin(), groups.end(), g.group) - groups.begin())] += g.mesh.num_faces();
+  return faces;
+}
+
 Scene keep_groups(Scene scene, const std::vector<std::string>& groups) {
   const std::vector<std::string> present = garment_groups(scene.garments);
   for (const std::string& group : groups)

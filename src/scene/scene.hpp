@@ -113,6 +113,9 @@ Scene load_scene(const std::string& path);
 // its group's garments, its group's obstacles and the obstacles of no group (copied into every
 // part), and the scene's settings. A scene without groups is one part.
 std::vector<Scene> split_groups(Scene scene);
+// The faces of each group's garments at the start, in split_groups' order: a first guess of
+// what each part costs.
+std::vector<double> group_faces(const Scene& scene);
 
 // The scene cut down to the named garment groups: their garments, their obstacles and the
 // obstacles of no group. Each group is simulated as it would be in the whole scene (its part of
