@@ -11,6 +11,7 @@ packages=(
   libopenblas0-openmp    # fast BLAS for CHOLMOD's dense kernels
   nlohmann-json3-dev     # scene and material files
   zlib1g-dev             # deflate for the PNG previews
+  openmpi-bin libopenmpi-dev  # `mpirun -np N vdcloth run`: a run across processes and machines
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev       # bench/
   assimp-testmodels      # CMU motion capture BVH files for the importer's tests

@@ -35,21 +35,17 @@ std::vector<GroupMove> rebalance(const std::vector<int>& owner_now, const std::v
     std::vector<double> load = loads(owner, seconds, processes);
     const auto busiest = static_cast<int>(std::max_element(load.begin(), load.end()) - load.begin());
     const double makespan = load[static_cast<std::size_t>(busiest)];
+    const auto least = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
     double best_net = 0;
-    GroupMove best{-1, busiest, busiest};
+    GroupMove best{-1, busiest, least};
     for (std::size_t g = 0; g < owner.size(); ++g) {
       if (owner[g] != busiest || moved[g]) continue;
-      for (int to = 0; to < processes; ++to) {
-        if (to == busiest) continue;
-        std::vector<double> after = load;
-        after[static_cast<std::size_t>(busiest)] -= seconds[g];
-        after[static_cast<std::size_t>(to)] += seconds[g];
-        const double gain = (makespan - *std::max_element(after.begin(), after.end())) * frames_ahead;
-        const double net = gain - move_seconds[g];
-        if (net > best_net) {
-          best_net = net;
-          best = {static_cast<int>(g), busiest, to};
-        }
+      // The busiest process's load falls by the group's; the pair's greater load is the gain's measure.
+      const double after = std::max(makespan - seconds[g], load[static_cast<std::size_t>(least)] + seconds[g]);
+      const double net = (makespan - after) * frames_ahead - move_seconds[g];
+      if (net > best_net) {
+        best_net = net;
+        best.group = static_cast<int>(g);
       }
     }
     if (best.group < 0) break;

@@ -16,10 +16,11 @@ struct GroupMove {
 };
 
 // Moves of groups from `owner` (a process per group). `seconds`: each group's measured seconds
-// a frame; a process's load is the sum of its groups'. Each move takes a group off the busiest
-// process to the one where it lowers the busiest load most; it is made only when that gain
-// over `frames_ahead` frames exceeds `move_seconds` (the group's measured cost of being sent
-// and rebuilt). At most one move a group.
+// a frame; a process's load is the sum of its groups'. Each move takes the group off the
+// busiest process to the least loaded one (the lowest rank among equals) that lowers the
+// greater of the two loads most; it is made only when that gain over `frames_ahead` frames
+// exceeds `move_seconds` (the group's measured cost of being sent and rebuilt). Moves follow
+// while one pays, at most one a group.
 std::vector<GroupMove> rebalance(const std::vector<int>& owner, const std::vector<double>& seconds, const std::vector<double>& move_seconds,
                                  int processes, int frames_ahead);
 

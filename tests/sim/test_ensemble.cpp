@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "output/checkpoint.hpp"
 #include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
 
@@ -84,6 +85,51 @@ TEST(Ensemble, GroupsKeptAloneStepAsInTheWholeScene) {
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "no garment group 'd' (its groups: a, b, c)");
   }
+  fs::remove_all(dir);
+}
+
+// A group handed from one share of the groups to another at a restart of the solvers (as the
+// processes of an MPI run do at a checkpoint) goes on exactly as in an ensemble of every group
+// restarted at the same frame; the group's count and frame stay with each share.
+TEST(Ensemble, AGroupHandedOverAtARestartGoesOnAsIfItHadStayed) {
+  const fs::path dir = fs::temp_directory_path() / ("vdcloth-handover-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const std::string path = crowd_scene(dir);
+  Ensemble whole(load_scene(path), SimOptions{SimMode::Adaptive, 1});
+  Ensemble first(load_scene(path), SimOptions{SimMode::Adaptive, 1}, {}, std::vector<int>{0, 1});
+  Ensemble second(load_scene(path), SimOptions{SimMode::Adaptive, 1}, {}, std::vector<int>{2});
+  EXPECT_EQ(first.groups(), 3);
+  EXPECT_EQ(second.here(), std::vector<int>{2});
+  EXPECT_EQ(second.group_scene(1).garments[0].name, "b");  // waiting there
+  for (int f = 0; f < 2; ++f) {
+    whole.step_frame();
+    first.step_parts();
+    second.step_parts();
+  }
+  whole.restart_solvers();
+  first.restart_solvers();
+  second.restart_solvers();
+  const std::string bytes = checkpoint_part(*first.parts()[1]);
+  first.drop(1);
+  second.adopt(1, read_checkpoint_part(bytes, first.frame(), "test"), "test");
+  EXPECT_EQ(first.here(), std::vector<int>{0});
+  EXPECT_EQ(second.here(), (std::vector<int>{1, 2}));
+  EXPECT_EQ(first.group_scene(1).garments[0].name, "b");  // waiting here now
+  for (int f = 2; f < 5; ++f) {
+    whole.step_frame();
+    first.step_parts();
+    const std::vector<PartFrame> frames = second.step_parts();
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(frames[0].group, 1);
+    EXPECT_EQ(frames[0].stats.frame, f + 1);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const Mesh& moved = second.parts()[k]->garment_mesh(0);
+      const Mesh& stayed = whole.parts()[k + 1]->garment_mesh(0);
+      ASSERT_EQ(moved.num_faces(), stayed.num_faces()) << "group " << k + 1 << ", frame " << f + 1;
+      for (NodeId n : moved.nodes()) ASSERT_EQ(moved.x(n), stayed.x(n)) << "group " << k + 1 << ", frame " << f + 1;
+    }
+  }
+  EXPECT_EQ(second.frame(), 5);
+  EXPECT_EQ(first.frame(), 5);
   fs::remove_all(dir);
 }
 
