@@ -65,7 +65,8 @@ extern const char* const kRunHelp =
     "groups, each with its own --threads, and write the same results as one process would: every\n"
     "frame file, stats.csv but its timings and the checkpoints byte for byte. Groups start on the\n"
     "processes by their size and move between them at checkpoints when the measured costs say it\n"
-    "pays; DIR/ranks.csv gives each process's busy and waiting seconds a frame. DIR must be on a\n"
+    "pays; DIR/ranks.csv gives each process's busy and waiting seconds a frame, DIR/groups.csv each\n"
+    "group's process and seconds. DIR must be on a\n"
     "file system every process sees (README.md, \"Crowds across machines\").\n";
 
 
@@ -227,11 +228,11 @@ std::optional<int> together(const Cluster& cluster, std::ostream& err, Step&& st
   return std::nullopt;
 }
 
-// DIR/ranks.csv: each process's share of each frame.
-class RanksTable {
+// A table of a run made by several processes, a row per frame and process or group
+// (DIR/ranks.csv, DIR/groups.csv), kept up to the checkpoint's frame when resumed.
+class FrameTable {
  public:
-  // A new table, or (resume_at > 0) the one in DIR kept up to that frame.
-  RanksTable(const std::string& dir, int resume_at) : path_(dir + "/ranks.csv") {
+  FrameTable(const std::string& path, const std::string& header, int resume_at) : path_(path) {
     std::vector<std::string> kept;
     if (resume_at > 0) {
       std::ifstream in(path_);
@@ -241,22 +242,31 @@ class RanksTable {
         if (std::atoi(line.c_str()) <= resume_at) kept.push_back(line);
     }
     table_.open(path_, std::ios::trunc);
-    table_ << "frame,process,groups,faces,busy_seconds,waiting_seconds,moving_seconds\n";
+    table_ << header << "\n";
     for (const auto& line : kept) table_ << line << "\n";
     if (!table_) throw OutputError(path_, "cannot write");
   }
-  // Process `process`'s row of `frame`: its report of the frame, and the seconds it then
-  // waited for the others and spent moving groups.
-  void row(int frame, int process, const ProcessReport& r, double waiting, double moving) {
+  // Process `process`'s row of ranks.csv for `frame`: its report of the frame, and the seconds
+  // it then waited for the others and spent moving groups.
+  void process_row(int frame, int process, const ProcessReport& r, double waiting, double moving) {
     int faces = 0;
     for (const PartFrame& p : r.parts) faces += p.stats.faces;
     table_ << frame << "," << process << "," << r.parts.size() << "," << faces << "," << std::fixed << std::setprecision(6)
            << r.busy_seconds << "," << waiting << "," << moving << "\n";
-    table_.unsetf(std::ios::fixed);
-    if (!table_.flush()) throw OutputError(path_, "cannot write");
+    finish_row();
+  }
+  // A group's row of groups.csv: the process that stepped it, its faces and seconds.
+  void group_row(const std::string& group, int process, const PartFrame& p) {
+    table_ << p.stats.frame << "," << group << "," << process << "," << p.stats.faces << "," << std::fixed << std::setprecision(6)
+           << p.seconds << "\n";
+    finish_row();
   }
 
  private:
+  void finish_row() {
+    table_.unsetf(std::ios::fixed);
+    if (!table_.flush()) throw OutputError(path_, "cannot write");
+  }
   std::string path_;
   std::ofstream table_;
 };
@@ -373,10 +383,16 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     return kExitOk;
   }
   // Rank 0 sets the directory up (removing an earlier run's files) before any process writes.
+  std::optional<FrameTable> ranks, group_table;
   if (const auto status = together(cluster, err, [&] {
         if (!root) output.emplace(RunOutput::joining(dir));
         else if (resume) output.emplace(dir, resume->frame);
         else output.emplace(dir);
+        if (root && processes > 1) {
+          const int kept = resume ? resume->frame : 0;
+          ranks.emplace(dir + "/ranks.csv", "frame,process,groups,faces,busy_seconds,waiting_seconds,moving_seconds", kept);
+          group_table.emplace(dir + "/groups.csv", "frame,group,process,faces,seconds", kept);
+        }
       }))
     return *status;
   if (root && resume) output->append_log("resumed at frame " + std::to_string(resume->frame));
@@ -384,8 +400,6 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   if (root && processes > sim->groups())
     log(std::to_string(processes) + " processes for " + std::to_string(sim->groups()) + " garment groups: processes " +
         std::to_string(sim->groups()) + " to " + std::to_string(processes - 1) + " have nothing to do");
-  std::optional<RanksTable> ranks;
-  if (root && processes > 1) ranks.emplace(dir, resume ? resume->frame : 0);
 
   int faces_at_start = sim->num_faces();
   if (processes > 1) {
@@ -430,7 +444,10 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   };
   auto summary = [&](const std::string& status, const std::string& error) {
     nlohmann::json j = output->summary(*sim, all_sizes(), status, error, usage(), segments, done, threads, args.perturbation);
-    if (processes > 1) j["distribution"] = distribution;
+    if (processes > 1) {
+      j["distribution"] = distribution;
+      j["distribution"]["rebuild_seconds_per_face"] = rebuild_seconds_per_face;
+    }
     return j;
   };
   // A run that cannot go on says why and how far it got, in summary.json (if it can still be
@@ -528,8 +545,10 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
       if (failure.status == kExitOk && shot) {
         try {
           if (ranks && !previous.empty())  // the last frame's row: its waiting and moving came with this one's reports
-            for (std::size_t r = 0; r < all.size(); ++r) ranks->row(next - 1, static_cast<int>(r), previous[r], all[r].waiting_seconds, all[r].moving_seconds);
+            for (std::size_t r = 0; r < all.size(); ++r) ranks->process_row(next - 1, static_cast<int>(r), previous[r], all[r].waiting_seconds, all[r].moving_seconds);
           output->write_stats_row(total);
+          if (group_table)
+            for (const PartFrame& p : parts) group_table->group_row(sim->group_scene(p.group).garments.front().group, owner[static_cast<std::size_t>(p.group)], p);
           if (checkpoint) {
             progress.usage = usage();
             try {
@@ -651,7 +670,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
         for (std::size_t r = 0; r < last.size(); ++r) {
           BinaryReader in(last[r].data(), last[r].size());
           const double waited = in.value<double>();
-          ranks->row(done, static_cast<int>(r), previous[r], waited, in.value<double>());
+          ranks->process_row(done, static_cast<int>(r), previous[r], waited, in.value<double>());
         }
     }
   } catch (...) {

@@ -165,6 +165,24 @@ TEST_F(Mpi, TwoAndThreeProcessesWriteWhatOneWrites) {
     }
     EXPECT_EQ(rows, 12 * n);
     for (const auto& [frame, count] : groups) EXPECT_EQ(count, 4) << "frame " << frame;
+    // groups.csv: each group at each frame, its faces those of its garment in stats.csv's sum.
+    std::ifstream group_rows(out / "groups.csv");
+    std::getline(group_rows, line);
+    EXPECT_EQ(line, "frame,group,process,faces,seconds");
+    std::map<int, int> faces;
+    std::set<std::string> named;
+    for (rows = 0; std::getline(group_rows, line); ++rows) {
+      int frame = 0, process = 0, count = 0;
+      char group[8] = {};
+      ASSERT_EQ(std::sscanf(line.c_str(), "%d,%7[^,],%d,%d", &frame, group, &process, &count), 4) << line;
+      EXPECT_LT(process, n);
+      faces[frame] += count;
+      named.insert(group);
+    }
+    EXPECT_EQ(rows, 12 * 4);
+    EXPECT_EQ(named, (std::set<std::string>{"a", "b", "c", "d"}));
+    const std::vector<std::string> stats = stats_without_timings(out);
+    for (const auto& [frame, count] : faces) EXPECT_EQ(std::to_string(frame) + "," + std::to_string(count) + ",", stats[static_cast<std::size_t>(frame - 1)].substr(0, std::to_string(frame).size() + std::to_string(count).size() + 2));
   }
   EXPECT_FALSE(fs::exists(dir_ / "one" / "ranks.csv"));
 }

@@ -1,0 +1,173 @@
+// Scaling on paper: a run's measured per-group, per-frame seconds (groups.csv of an MPI run)
+// replayed through the balancer's own policy (dist/placement.hpp) for other numbers of
+// processes, static placement against moves at checkpoints.
+//
+// Model: a frame takes the greatest load of its processes (the sum of their groups' measured
+// seconds) plus the frame's exchange, the measured one times log2 of the processes (tree
+// collectives); a group moved at a checkpoint adds its faces times the measured rebuild
+// seconds a face to its receiver's next frame. Both start longest first by the groups' faces
+// at the first frame; static placement never moves. Efficiency: the groups' seconds over
+// processes times the replayed wall time.
+//
+// usage: vdcloth_balance_replay RUN_DIR [--every K] [--processes N]... [--seconds-per-face S] [--exchange S]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dist/placement.hpp"
+
+namespace {
+
+struct Costs {
+  std::vector<std::string> groups;
+  std::vector<std::vector<double>> seconds;  // [frame][group]
+  std::vector<std::vector<double>> faces;
+};
+
+Costs read_groups(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot open");
+  std::string line;
+  std::getline(in, line);
+  if (line != "frame,group,process,faces,seconds") throw std::runtime_error(path + ": not a groups.csv");
+  Costs c;
+  std::map<std::string, std::size_t> index;
+  std::map<int, std::map<std::size_t, std::pair<double, double>>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream s(line);
+    std::string frame, group, process, faces, seconds;
+    std::getline(s, frame, ',');
+    std::getline(s, group, ',');
+    std::getline(s, process, ',');
+    std::getline(s, faces, ',');
+    std::getline(s, seconds, ',');
+    if (!index.count(group)) {
+      index[group] = c.groups.size();
+      c.groups.push_back(group);
+    }
+    rows[std::stoi(frame)][index[group]] = {std::stod(faces), std::stod(seconds)};
+  }
+  for (const auto& [frame, groups] : rows) {
+    std::vector<double> f(c.groups.size(), 0.0), t(c.groups.size(), 0.0);
+    for (const auto& [g, ft] : groups) {
+      f[g] = ft.first;
+      t[g] = ft.second;
+    }
+    c.faces.push_back(f);
+    c.seconds.push_back(t);
+  }
+  return c;
+}
+
+struct Replay {
+  double wall = 0, work = 0;
+  int moves = 0;
+  double efficiency(int n) const { return work / (n * wall); }
+};
+
+Replay replay(const Costs& c, int n, int every, bool balance, double seconds_per_face, double exchange) {
+  std::vector<int> owner = vdc::place_longest_first(c.faces.front(), n);
+  Replay r;
+  std::vector<double> since(c.groups.size(), 0.0), moving(static_cast<std::size_t>(n), 0.0);
+  int frames_since = 0;
+  const double frame_exchange = n > 1 ? exchange * std::log2(static_cast<double>(n)) : 0.0;
+  for (std::size_t f = 0; f < c.seconds.size(); ++f) {
+    std::vector<double> load = moving;
+    std::fill(moving.begin(), moving.end(), 0.0);
+    for (std::size_t g = 0; g < owner.size(); ++g) {
+      load[static_cast<std::size_t>(owner[g])] += c.seconds[f][g];
+      r.work += c.seconds[f][g];
+      since[g] += c.seconds[f][g];
+    }
+    r.wall += *std::max_element(load.begin(), load.end()) + frame_exchange;
+    ++frames_since;
+    const int frame = static_cast<int>(f) + 1;
+    if (balance && frame % every == 0 && f + 1 < c.seconds.size()) {
+      std::vector<double> per_frame(since.size()), cost(since.size());
+      for (std::size_t g = 0; g < since.size(); ++g) {
+        per_frame[g] = since[g] / frames_since;
+        cost[g] = c.faces[f][g] * seconds_per_face;
+      }
+      const int ahead = std::min(every, static_cast<int>(c.seconds.size() - f - 1));
+      for (const vdc::GroupMove& m : vdc::rebalance(owner, per_frame, cost, n, ahead)) {
+        owner[static_cast<std::size_t>(m.group)] = m.to;
+        moving[static_cast<std::size_t>(m.to)] += cost[static_cast<std::size_t>(m.group)];
+        ++r.moves;
+      }
+      std::fill(since.begin(), since.end(), 0.0);
+      frames_since = 0;
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << "usage: vdcloth_balance_replay RUN_DIR [--every K] [--processes N]... [--seconds-per-face S] [--exchange S]\n";
+    return 2;
+  }
+  const std::string dir = argv[1];
+  int every = 10;
+  std::vector<int> processes;
+  double seconds_per_face = -1, exchange = -1;
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--every") every = std::stoi(v);
+    else if (a == "--processes") processes.push_back(std::stoi(v));
+    else if (a == "--seconds-per-face") seconds_per_face = std::stod(v);
+    else if (a == "--exchange") exchange = std::stod(v);
+    else {
+      std::cerr << "unknown option " << a << "\n";
+      return 2;
+    }
+  }
+  if (processes.empty()) processes = {2, 8, 32, 128};
+  try {
+    const Costs c = read_groups(dir + "/groups.csv");
+    // The run's own measures: the rebuild rate from summary.json, the exchange from ranks.csv
+    // (each frame's least waiting: what even the busiest process waited).
+    if (seconds_per_face < 0) {
+      std::ifstream s(dir + "/summary.json");
+      const nlohmann::json j = nlohmann::json::parse(s);
+      seconds_per_face = j["distribution"].value("rebuild_seconds_per_face", 0.0);
+    }
+    if (exchange < 0) {
+      std::ifstream ranks(dir + "/ranks.csv");
+      std::string line;
+      std::getline(ranks, line);
+      std::map<int, double> least;
+      while (std::getline(ranks, line)) {
+        int frame = 0, process = 0, groups = 0, faces = 0;
+        double busy = 0, waiting = 0, moving = 0;
+        if (std::sscanf(line.c_str(), "%d,%d,%d,%d,%lf,%lf,%lf", &frame, &process, &groups, &faces, &busy, &waiting, &moving) != 7) continue;
+        least[frame] = least.count(frame) ? std::min(least[frame], waiting) : waiting;
+      }
+      std::vector<double> w;
+      for (const auto& [f, x] : least) w.push_back(x);
+      std::sort(w.begin(), w.end());
+      exchange = w.empty() ? 0.0 : w[w.size() / 2];
+    }
+    std::printf("%zu groups, %zu frames, checkpoints every %d frames, rebuild %.3g s a face, exchange %.3g s a frame at 2 processes\n",
+                c.groups.size(), c.seconds.size(), every, seconds_per_face, exchange);
+    std::printf("| processes | static efficiency | balanced efficiency | moves |\n| ---: | ---: | ---: | ---: |\n");
+    for (int n : processes) {
+      const Replay s = replay(c, n, every, false, seconds_per_face, exchange);
+      const Replay b = replay(c, n, every, true, seconds_per_face, exchange);
+      std::printf("| %d | %.1f%% | %.1f%% | %d |\n", n, 100 * s.efficiency(n), 100 * b.efficiency(n), b.moves);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "vdcloth_balance_replay: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
