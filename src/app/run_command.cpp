@@ -273,25 +273,15 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   // since the last checkpoint, and where it has been.
   const auto groups = static_cast<std::size_t>(sim->groups());
   std::vector<std::vector<GarmentSize>> sizes(groups);
-  {
-    std::size_t k = 0;
-    const std::vector<GarmentSize> mine = garment_sizes(*sim);
-    for (int g : sim->here())
-      for (std::size_t i = 0; i < sim->group_scene(g).garments.size(); ++i) sizes[static_cast<std::size_t>(g)].push_back(mine[k++]);
-  }
+  for (std::size_t k = 0; k < sim->parts().size(); ++k) sizes[static_cast<std::size_t>(sim->here()[k])] = garment_sizes(*sim->parts()[k]);
   std::vector<double> group_seconds(groups, 0.0);
   std::vector<int> group_frames(groups, 0);
   nlohmann::json distribution;
   if (processes > 1) {
     distribution = {{"processes", processes}, {"start", owner}, {"moves", nlohmann::json::array()}};
   }
-  auto all_sizes = [&] {
-    std::vector<GarmentSize> all;
-    for (const auto& s : sizes) all.insert(all.end(), s.begin(), s.end());
-    return all;
-  };
   auto summary = [&](const std::string& status, const std::string& error) {
-    nlohmann::json j = output->summary(*sim, all_sizes(), status, error, usage(), segments, done, threads, args.perturbation);
+    nlohmann::json j = output->summary(*sim, sizes, status, error, usage(), segments, done, threads, args.perturbation);
     if (processes > 1) {
       j["distribution"] = distribution;
       j["distribution"]["rebuild_seconds_per_face"] = rebuild_seconds_per_face;
@@ -316,7 +306,6 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
       last_words->leave(dir + "/summary.json", summary("failed", ""), dir + "/" + kLogFile,
                         " (frames 0 to " + std::to_string(done) + " are in " + dir + ")");
   };
-  leave_last_words();
 
   double waiting = 0, moving = 0;  // this process's, to report with the next frame
   std::vector<ProcessReport> previous;  // rank 0: the last frame's reports, for its ranks.csv rows
@@ -340,13 +329,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
         output->write_frame(*sim, next);
         mine.output_seconds += seconds_since(w);
       }
-      const std::vector<GarmentSize> mine_sizes = garment_sizes(*sim);
-      std::size_t k = 0;
-      for (const auto& part : sim->parts()) {
-        mine.sizes.emplace_back(mine_sizes.begin() + static_cast<std::ptrdiff_t>(k),
-                                mine_sizes.begin() + static_cast<std::ptrdiff_t>(k + part->scene().garments.size()));
-        k += part->scene().garments.size();
-      }
+      for (const auto& part : sim->parts()) mine.sizes.push_back(garment_sizes(*part));
       if (checkpoint) {
         const auto w = std::chrono::steady_clock::now();
         sim->restart_solvers();
@@ -472,6 +455,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   };
 
   try {
+    leave_last_words();
     const Scene& shot = sim->group_scene(0);
     if (root && shot.camera) write_camera_files(*shot.camera, shot.frame_time, frames, dir);
     else if (root) remove_camera_files(dir);  // of an earlier run of another scene
@@ -522,7 +506,11 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
         }
     }
   } catch (...) {
-    return stop_part_way(failure_of(std::current_exception()));
+    // Outside the frames' exchange (rank 0's own files, a move): the other processes would
+    // wait for this one forever, so the run ends as a whole.
+    const int status = stop_part_way(failure_of(std::current_exception()));
+    if (processes > 1) cluster.abort(status);
+    return status;
   }
   if (line_open) out << "\n";
   if (!root) return kExitOk;

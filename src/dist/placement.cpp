@@ -1,7 +1,6 @@
 #include "dist/placement.hpp"
 
 #include <algorithm>
-#include <numeric>
 
 #include "core/task_order.hpp"
 
@@ -54,13 +53,6 @@ std::vector<GroupMove> rebalance(const std::vector<int>& owner_now, const std::v
     moves.push_back(best);
   }
   return moves;
-}
-
-double imbalance(const std::vector<int>& owner, const std::vector<double>& seconds, int processes) {
-  const std::vector<double> load = loads(owner, seconds, processes);
-  const double total = std::accumulate(load.begin(), load.end(), 0.0);
-  if (total <= 0) return 1.0;
-  return *std::max_element(load.begin(), load.end()) / (total / processes);
 }
 
 }  // namespace vdc

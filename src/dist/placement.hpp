@@ -24,7 +24,4 @@ struct GroupMove {
 std::vector<GroupMove> rebalance(const std::vector<int>& owner, const std::vector<double>& seconds, const std::vector<double>& move_seconds,
                                  int processes, int frames_ahead);
 
-// The greatest load over the mean load: 1 when balanced.
-double imbalance(const std::vector<int>& owner, const std::vector<double>& seconds, int processes);
-
 }  // namespace vdc

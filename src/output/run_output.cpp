@@ -199,15 +199,13 @@ bool run_is_done(const std::string& dir, int frames) {
   return j.is_object() && j.value("status", "") == "done" && j.value("frames", -1) == frames;
 }
 
-std::vector<GarmentSize> garment_sizes(const Ensemble& run) {
+std::vector<GarmentSize> garment_sizes(const Simulation& part) {
   std::vector<GarmentSize> sizes;
-  for (const auto& part : run.parts())
-    for (std::size_t g = 0; g < part->scene().garments.size(); ++g)
-      sizes.push_back({part->garment_mesh(g).num_faces(), part->garment_mesh(g).num_nodes()});
+  for (std::size_t g = 0; g < part.scene().garments.size(); ++g) sizes.push_back({part.garment_mesh(g).num_faces(), part.garment_mesh(g).num_nodes()});
   return sizes;
 }
 
-nlohmann::json RunOutput::summary(const Ensemble& run, const std::vector<GarmentSize>& sizes, const std::string& status, const std::string& error,
+nlohmann::json RunOutput::summary(const Ensemble& run, const std::vector<std::vector<GarmentSize>>& sizes, const std::string& status, const std::string& error,
                                   const ResourceUsage& usage, int segments, int frames_done, int threads, const Perturbation& perturbation) const {
   nlohmann::json j;
   const Scene& scene = run.group_scene(0);
@@ -237,11 +235,12 @@ nlohmann::json RunOutput::summary(const Ensemble& run, const std::vector<Garment
   j["seconds_per_frame"] = {{"mean", rows_ ? sum_seconds_ / rows_ : 0.0}, {"max", max_seconds_}};
   j["faces"] = {{"min", min_faces_}, {"max", max_faces_}, {"mean", rows_ ? sum_faces_ / rows_ : 0.0}};
   nlohmann::json garments = nlohmann::json::array();
-  std::size_t next = 0;
   for (int group = 0; group < run.groups(); ++group)
-    for (const GarmentSpec& spec : run.group_scene(group).garments) {
-      const GarmentSize size = next < sizes.size() ? sizes[next] : GarmentSize{};
-      ++next;
+    for (std::size_t g = 0; g < run.group_scene(group).garments.size(); ++g) {
+      const GarmentSpec& spec = run.group_scene(group).garments[g];
+      // A group another process steps and has not reported yet (before a run's first frame): zeros.
+      const auto& group_sizes = sizes.at(static_cast<std::size_t>(group));
+      const GarmentSize size = g < group_sizes.size() ? group_sizes[g] : GarmentSize{};
       nlohmann::json garment{{"name", spec.name}, {"material", spec.material.name}, {"faces", size.faces}, {"vertices", size.vertices}};
       if (!spec.fitted_to.empty()) garment["fitted"] = {{"to", spec.fitted_to}, {"ease", spec.ease}};
       garments.push_back(garment);

@@ -27,8 +27,8 @@ std::map<int, FrameFiles> read_frame_files(const std::string& run_dir);
 struct GarmentSize {
   int faces = 0, vertices = 0;
 };
-// The sizes of the garments of the groups stepped in `run`, group by group in scene order.
-std::vector<GarmentSize> garment_sizes(const Ensemble& run);
+// The sizes of one group's garments now, in its scene's order.
+std::vector<GarmentSize> garment_sizes(const Simulation& part);
 
 // Whether DIR/summary.json says the run is done with `frames` frames (a resume has nothing to do).
 bool run_is_done(const std::string& dir, int frames);
@@ -53,9 +53,9 @@ class RunOutput {
   // log that cannot be written does not stop the run (the error stream still has the line).
   void append_log(const std::string& line) const;
   // summary.json's contents. status: "done" or "failed"; error: message when failed. `sizes`:
-  // every group's garments' (garment_sizes, all groups in order); `usage` covers all
+  // each group's garment_sizes, every group of the scene in order (none yet: zeros); `usage` covers all
   // `segments` processes the run was made in; `perturbation`: what the scene was perturbed by.
-  nlohmann::json summary(const Ensemble& run, const std::vector<GarmentSize>& sizes, const std::string& status, const std::string& error,
+  nlohmann::json summary(const Ensemble& run, const std::vector<std::vector<GarmentSize>>& sizes, const std::string& status, const std::string& error,
                          const ResourceUsage& usage, int segments, int frames_done, int threads, const Perturbation& perturbation) const;
   void write_summary(const nlohmann::json& summary) const;
   const std::string& dir() const { return dir_; }

@@ -48,10 +48,5 @@ TEST(Placement, SeveralMovesEachFromTheBusiestProcess) {
   EXPECT_EQ(to, (std::vector<int>{1, 2, 3}));
 }
 
-TEST(Placement, ImbalanceIsTheGreatestLoadOverTheMean) {
-  EXPECT_DOUBLE_EQ(imbalance({0, 0, 0, 1}, {3, 2, 1, 1}, 2), 6.0 / 3.5);
-  EXPECT_DOUBLE_EQ(imbalance({0, 1}, {2, 2}, 2), 1.0);
-}
-
 }  // namespace
 }  // namespace vdc
