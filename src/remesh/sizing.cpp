@@ -155,7 +155,7 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
     for (FaceId f : mesh.faces()) {
       const Mat2& physical = before[static_cast<std::size_t>(f.idx)];
       if (face[f] != physical) face[f] = clamp_sizing(planes.empty() ? face[f] : tensor_max(face[f], obstacle_metric(mesh, f, planes)), p);
-      coarsening[f] = face[f] == physical ? 1.0 : metric_ratio(physical, face[f]);
+      coarsening[f] = std::max(face[f] == physical ? 1.0 : metric_ratio(physical, face[f]), modifier->fold_coarsening(mesh, f, face[f]));
     }
   }
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());

@@ -36,7 +36,8 @@ inline constexpr const char* kFaceSizingAttr = "face_sizing";
 // Face attribute (double) written by compute_sizing when a modifier changed the field: how much
 // coarser than the physical criteria ask the face may be, as the largest eigenvalue of the
 // physical tensor measured in the final one (the square of the length ratio; 1 or less where
-// the modifier did not coarsen).
+// the modifier did not coarsen), or than the folds the modifier says it cannot show
+// (FaceSizingModifier::fold_coarsening), whichever is larger.
 inline constexpr const char* kCoarseningAttr = "coarsening";
 
 class FaceSizingModifier {
@@ -46,6 +47,11 @@ class FaceSizingModifier {
   // clamped tensors of the criterion that resolves the cloth's motion (velocity, see
   // motion_sizing), which a modifier trading visual detail keeps.
   virtual void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const = 0;
+  // Where the modifier knows the cloth folds finer than its final tensor `sizing` lets it show
+  // (squared length ratio as in kCoarseningAttr): how much coarser than those folds the face is;
+  // compute_sizing records the larger of this and the coarsening against the physical tensor.
+  // 0 (the default): nothing known beyond the physical tensor.
+  virtual double fold_coarsening(const Mesh& /*mesh*/, FaceId /*f*/, const Mat2& /*sizing*/) const { return 0.0; }
 };
 
 // The criteria of one face (Narain et al. 2012, section 5), unclamped: curvature resolves the

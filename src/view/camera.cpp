@@ -1,6 +1,8 @@
 // Perspective camera, its frustum, and keyframed camera paths with cuts.
 #include "view/camera.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -52,6 +54,13 @@ Mat23 Camera::projection_jacobian(const Vec3& x) const {
   j.row(0) = (fp * (r / z - p.dot(r) * f / (z * z))).transpose();
   j.row(1) = (-fp * (u / z - p.dot(u) * f / (z * z))).transpose();
   return j;
+}
+
+double Camera::pixels_per_metre(const Vec3& x) const {
+  const Mat23 j = projection_jacobian(x);
+  Eigen::SelfAdjointEigenSolver<Mat2> eig;
+  eig.computeDirect(j * j.transpose());
+  return std::sqrt(std::max(eig.eigenvalues()[1], 0.0));
 }
 
 std::array<std::pair<Vec3, double>, 6> Camera::frustum_planes() const {

@@ -41,6 +41,9 @@ struct Camera {
   Vec2 project(const Vec3& x, double* depth = nullptr) const;
   // Jacobian of project at x: pixels per metre, 2x3 (x must be in front of the camera).
   Mat23 projection_jacobian(const Vec3& x) const;
+  // How many pixels a short length at x spans on screen at most (in the direction it looks
+  // longest): the largest singular value of projection_jacobian(x).
+  double pixels_per_metre(const Vec3& x) const;
   // The six planes bounding the view frustum, as inward unit normals n and offsets c, so that
   // n . x + c >= 0 inside.
   std::array<std::pair<Vec3, double>, 6> frustum_planes() const;

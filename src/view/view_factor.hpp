@@ -54,6 +54,14 @@ struct ViewParams {
   // it, whatever its motion asks (always so with occlusion), unless a cut within eq. 4's window
   // will show it better (eq. 4 raised its factor).
   bool floor_in_frame = false;
+  // m: the width of the folds cloth forms where nothing holds it smooth (an extension). A smooth
+  // coarse mesh cannot show or form them, and its physical sizing, measured on that smooth
+  // mesh, does not ask for them either, so by the physical sizing alone it stays a stiff cone
+  // where the adaptive cloth gathers into folds. On a face in frame where folds this wide
+  // would span less than half the screen-space floor (a far dancer), the compression law
+  // (membrane.hpp) measures the face's coarsening against these folds too; it fades out as
+  // they grow to the whole floor on screen. 0: off.
+  double fold_length = 0.02;
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.
   bool motion_anticipation = true;

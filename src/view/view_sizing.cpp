@@ -66,6 +66,7 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   floored_.assign(factor_.size(), 0);
   reason_.assign(factor_.size(), ViewReason::seen);
   floor_.assign(factor_.size(), params_.l_min);
+  fold_weight_.assign(factor_.size(), 0.0);
   counts_ = ViewCounts{};
   const AnticipationWindow window(path_, time_, frame_time_, params_);
   if (occluders != nullptr && occluders->empty()) occluders = nullptr;
@@ -103,6 +104,8 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
       floor_[at] = screen_floor((a + b + c) / 3.0, velocity, &set_by);
       if (visible_[at]) reason_[at] = set_by;
     }
+    if (params_.fold_length > 0 && floor_[at] > 0 && reason_[at] != ViewReason::out_of_frame)
+      fold_weight_[at] = fold_weight(params_.fold_length * now_.pixels_per_metre((a + b + c) / 3.0), floor_[at]);
   }
   for (FaceId f : faces) {
     const auto at = static_cast<std::size_t>(f.idx);
@@ -114,6 +117,19 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     counts_.blurred += reason_[at] == ViewReason::motion_blurred;
   }
   resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
+}
+
+double fold_weight(double fold_pixels, double floor_pixels) {
+  if (!(floor_pixels > 0)) return 0.0;
+  return std::clamp(2.0 * (1.0 - fold_pixels / floor_pixels), 0.0, 1.0);
+}
+
+double ViewSizing::fold_coarsening(const Mesh&, FaceId f, const Mat2& sizing) const {
+  const auto at = static_cast<std::size_t>(f.idx);
+  const double w = at < fold_weight_.size() ? fold_weight_[at] : 0.0;
+  if (!(w > 0)) return 0.0;
+  const double folds = metric_ratio(Mat2::Identity() / (params_.fold_length * params_.fold_length), sizing);
+  return 1.0 + w * (folds - 1.0);
 }
 
 void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const {

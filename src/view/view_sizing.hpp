@@ -10,7 +10,9 @@
 // is set, longer than l_max pixels (an extension: the visible cloth keeps the degrees of
 // freedom its folds need). Before `settle` every factor is 1: a garment finds its
 // drape on the body with nothing coarsened for facing away or being out of frame (the screen-
-// space bounds still apply).
+// space bounds still apply). Where folds of fold_length are finer than the screen-space floor
+// can show, it also tells compute_sizing how much coarser than those folds a face is
+// (fold_coarsening), so that the compression law softens cloth that stands for them.
 #pragma once
 #include <optional>
 #include <vector>
@@ -24,6 +26,11 @@ namespace vdc {
 // S^T clamp(S^-T M S^-1, l_max^-2, l_min^-2) S, the clamp taken on eigenvalues; a bound of 0 is
 // no bound. M is returned unchanged when S is singular or both bounds are 0.
 Mat2 screen_space_bounds(const Mat2& m, const Mat23& projection_jacobian, const Mat32& deformation, double l_min, double l_max);
+
+// How fully cloth whose folds span `fold_pixels` on screen is taken for folded below a
+// screen-space floor of `floor_pixels`: 1 up to half the floor, falling linearly to 0 at the
+// floor (and 0 without a floor), so that nothing jumps as the camera moves in.
+double fold_weight(double fold_pixels, double floor_pixels);
 
 struct ViewCounts {
   int visible = 0;       // in frame, outer side towards the camera
@@ -49,6 +56,11 @@ class ViewSizing final : public FaceSizingModifier {
   // open when the camera has motion blur (the cloth's motion and the camera's; none across a cut).
   // `set_by`, when given: seen (l_min), defocused or motion_blurred.
   double screen_floor(const Vec3& centre, const Vec3& velocity, ViewReason* set_by = nullptr) const;
+  // Folds finer than the image shows (an extension): on a face in frame where folds of
+  // fold_length would span less than its screen-space floor, how much coarser than such folds
+  // the face's final tensor lets it be (metric_ratio against fold_length^-2 I), weighted by
+  // fold_weight; 0 where it is not weighted (out of frame, near the camera, fold_length 0).
+  double fold_coarsening(const Mesh& mesh, FaceId f, const Mat2& sizing) const override;
   const std::vector<double>& factors() const { return factor_; }  // by face index
   const std::vector<ViewReason>& reasons() const { return reason_; }  // by face index
   const ViewCounts& counts() const { return counts_; }
@@ -64,6 +76,7 @@ class ViewSizing final : public FaceSizingModifier {
   std::vector<char> floored_;  // by face index: under the screen-space floor (visible, or in frame with occlusion)
   std::vector<ViewReason> reason_;  // by face index
   std::vector<double> floor_;       // by face index: the screen-space floor of a visible face, pixels
+  std::vector<double> fold_weight_;  // by face index: fold_weight of the face's folds on screen
   Camera now_;                 // the camera at time_
   std::optional<Camera> shutter_closes_;  // the camera when the shutter closes (motion blur)
   bool lens_blurs_ = false;               // depth of field or motion blur may raise the floor

@@ -132,6 +132,39 @@ TEST(Sizing, ModifiersGetTheMotionCriteriaAndTheCoarseningTheyCauseIsRecorded) {
   for (FaceId f : mesh.faces()) EXPECT_NEAR(mesh.face_attrs().get<double>(kCoarseningAttr)[f], 0.25, 1e-9);
 }
 
+// A modifier that scales every face tensor and says every face is `folds` times coarser than
+// folds it cannot show.
+class FoldingModifier final : public FaceSizingModifier {
+ public:
+  FoldingModifier(double scale, double folds) : scale_(scale), folds_(folds) {}
+  void modify(const Mesh& mesh, const std::vector<Mat2>&, Attribute<FaceTag, Mat2>& face) const override {
+    for (FaceId f : mesh.faces()) face[f] = scale_ * face[f];
+  }
+  double fold_coarsening(const Mesh&, FaceId, const Mat2&) const override { return folds_; }
+
+ private:
+  double scale_, folds_;
+};
+
+// The coarsening recorded is the larger of the physical one and the folds', also where the
+// modifier left the tensor as physics asked (a smooth coarse mesh whose physics asks nothing).
+TEST(Sizing, TheCoarseningRecordedIsAlsoAgainstTheFoldsAModifierCannotShow) {
+  SizingParams p;
+  Mesh rest = build_mesh(make_grid(1, 1, 4, 4));  // every face at size_max: physics asks nothing
+  const FoldingModifier unchanged(1, 9);
+  compute_sizing(rest, p, &unchanged);
+  for (FaceId f : rest.faces()) EXPECT_NEAR(rest.face_attrs().get<double>(kCoarseningAttr)[f], 9.0, 1e-12);
+  // The shear flow above: a quarter of the tensor is a coarsening of 4 against physics.
+  Mesh shear = build_mesh(make_grid(1, 1, 4, 4));
+  for (NodeId n : shear.nodes()) shear.v(n) = Vec3(0, 5 * shear.x(n).x(), 0);
+  for (const auto& [folds, recorded] : {std::pair{2.0, 4.0}, std::pair{16.0, 16.0}}) {
+    const FoldingModifier quarter(0.25, folds);
+    compute_sizing(shear, p, &quarter);
+    for (FaceId f : shear.faces()) EXPECT_NEAR(shear.face_attrs().get<double>(kCoarseningAttr)[f], recorded, 1e-9);
+  }
+}
+
+
 // A modifier that gives each face its own isotropic tensor, inside the clamp (1/0.2^2 to 1/0.01^2).
 class PerFaceModifier final : public FaceSizingModifier {
  public:

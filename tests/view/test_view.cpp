@@ -240,6 +240,60 @@ TEST(ViewSizing, FloorInFrameBoundsTheFacesTurnedAwayToo) {
   }
 }
 
+// A metre at depth 5 on the axis spans f / 5 pixels; a metre off the axis at (1, 0, 0), depth
+// 5, spans f sqrt(0.2^2 + 0.04^2) along x (the forward term of the Jacobian, -x f / z^2) and
+// f / 5 along y: the larger.
+TEST(Camera, PixelsPerMetreIsTheJacobiansLargestStretch) {
+  const Camera c = front_camera();
+  const double f = 360 / std::tan(20 * M_PI / 180);
+  EXPECT_NEAR(c.pixels_per_metre(Vec3::Zero()), f / 5, 1e-9);
+  EXPECT_NEAR(c.pixels_per_metre(Vec3(1, 0, 0)), f * std::sqrt(0.04 + 0.0016), 1e-9);
+}
+
+TEST(FoldWeight, FullUpToHalfTheFloorThenFallingToNothingAtTheFloor) {
+  EXPECT_EQ(fold_weight(1, 4), 1.0);
+  EXPECT_EQ(fold_weight(2, 4), 1.0);
+  EXPECT_NEAR(fold_weight(3, 4), 0.5, 1e-15);
+  EXPECT_EQ(fold_weight(4, 4), 0.0);
+  EXPECT_EQ(fold_weight(9, 4), 0.0);
+  EXPECT_EQ(fold_weight(1, 0), 0.0);
+}
+
+// 2 cm folds on a sheet 20 m away span about a pixel, under half of l_min's 4: a face allowed
+// 10 cm edges is (10 / 2)^2 = 25 times coarser than its folds, seen or turned away. 2 m away
+// they span about 10 pixels and nothing is said (0); at the distance where they span 3 pixels
+// the weight is a half, 1 + 0.5 * 24; out of frame, or with fold_length 0, nothing either.
+TEST(ViewSizing, FoldsFinerThanTheScreenFloorCountAsCoarsening) {
+  Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
+  Camera lens = front_camera();
+  lens.far = 100;
+  const Mat2 ten_cm = Mat2::Identity() / (0.1 * 0.1);
+  const double f = 360 / std::tan(20 * M_PI / 180);
+  auto folds = [&](const Vec3& eye, const Vec3& target, const Vec3& up, double fold_length, ViewReason reason) {
+    lens.up = up;
+    const CameraPath path(lens, {{0.0, eye, target, false}});
+    ViewParams p;
+    p.fold_length = fold_length;
+    ViewSizing view(path, p, 0.0, 0.04);
+    view.evaluate(m);
+    std::vector<double> out;
+    for (FaceId face : m.faces()) {
+      EXPECT_EQ(view.reasons()[static_cast<std::size_t>(face.idx)], reason);
+      out.push_back(view.fold_coarsening(m, face, ten_cm));
+    }
+    return out;
+  };
+  const Vec3 centre(0.1, 0, -0.1), above(0, 0, -1), below(0, 0, 1);
+  for (double c : folds(centre + Vec3(0, 20, 0), centre, above, 0.02, ViewReason::seen)) EXPECT_NEAR(c, 25, 1e-9);
+  for (double c : folds(centre - Vec3(0, 20, 0), centre, below, 0.02, ViewReason::back_facing)) EXPECT_NEAR(c, 25, 1e-9);
+  for (double c : folds(centre + Vec3(0, 2, 0), centre, above, 0.02, ViewReason::seen)) EXPECT_EQ(c, 0.0);
+  for (double c : folds(centre + Vec3(0, 20, 0), centre + Vec3(0, 40, 0), above, 0.02, ViewReason::out_of_frame)) EXPECT_EQ(c, 0.0);
+  for (double c : folds(centre + Vec3(0, 20, 0), centre, above, 0.0, ViewReason::seen)) EXPECT_EQ(c, 0.0);
+  // 3 pixels: 0.02 f / d = 3. The face centres lie 3.3 cm off the axis, which lengthens a
+  // metre on screen by a factor 1 + O(1e-5) at that distance: the weight within 1e-3 of a half.
+  for (double c : folds(centre + Vec3(0, 0.02 * f / 3, 0), centre, above, 0.02, ViewReason::seen)) EXPECT_NEAR(c, 1 + 0.5 * 24, 0.03);
+}
+
 // Screen length, in pixels, of the shortest edge the tensor allows along material direction d.
 double screen_edge(const Mat2& m, const Mat23& j, const Mat32& f, const Vec2& d) {
   const Vec2 u = d.normalized() / std::sqrt(d.normalized().dot(m * d.normalized()));
