@@ -146,18 +146,17 @@ int main(int argc, char** argv) {
   std::vector<int> processes;
   double seconds_per_face = -1, exchange = -1;
   bool run_ahead = false;
-  for (int i = 2; i < argc; i += 2) {
+  for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--run-ahead") {
       run_ahead = true;
-      --i;
       continue;
     }
     if (i + 1 >= argc) {
       std::cerr << "option " << a << " needs a value\n";
       return 2;
     }
-    const std::string v = argv[i + 1];
+    const std::string v = argv[++i];
     if (a == "--every") every = std::stoi(v);
     else if (a == "--processes") processes.push_back(std::stoi(v));
     else if (a == "--seconds-per-face") seconds_per_face = std::stod(v);

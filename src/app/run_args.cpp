@@ -52,7 +52,6 @@ extern const char* const kRunHelp =
     "group's process and seconds. DIR must be on a\n"
     "file system every process sees (README.md, \"Crowds across machines\").\n";
 
-
 namespace {
 
 // --perturb's bound: a thousandth of gravity is still far below what a scene's author would
@@ -62,9 +61,6 @@ constexpr double kMaxPerturbation = 1e-3;
 // hysteresis (remesher.hpp, collapse_margin 0.2 of the squared length); beyond it, another
 // resolution.
 constexpr double kMaxResolutionPerturbation = 0.1;
-
-
-
 
 }  // namespace
 

@@ -26,6 +26,8 @@ namespace vdc {
 
 namespace {
 
+namespace fs = std::filesystem;
+
 std::string format_duration(double s) {
   std::ostringstream o;
   int total = static_cast<int>(s + 0.5);
