@@ -2,6 +2,7 @@
 #include "physics/membrane.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -48,6 +49,11 @@ MatN<9> hessian_with(const Mat32& f, const Mat2& s_geo, const MembraneElement& m
 double coarse_compression_factor(double coarsening) {
   if (!(coarsening > 1)) return 1;
   return std::max(1e-6, 1 / (coarsening * coarsening));
+}
+
+double eased_compression(double current, double target, double dt, double settle) {
+  if (!(settle > 0) || !(target < current)) return target;
+  return std::max(target, current * std::pow(target, dt / settle));
 }
 
 MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k,

@@ -38,6 +38,13 @@ using TriStencil = std::array<Vec3, 3>;
 // to the adaptive shot (bench/RESULTS.md, "The compression law").
 double coarse_compression_factor(double coarsening);
 
+// A face's compression factor one step of `dt` seconds on (an extension of the law above): cloth
+// that gathers into folds does so over time, as it buckles, so a factor that softens moves from
+// `current` towards `target` geometrically, reaching it after `settle` seconds at most
+// (current * target^(dt / settle), never below target); one that stiffens, or any with settle 0,
+// is `target` at once.
+double eased_compression(double current, double target, double dt, double settle);
+
 MembraneElement make_membrane_element(const Vec2& u0, const Vec2& u1, const Vec2& u2, const MembraneStiffness& k,
                                       double compression = 1);
 

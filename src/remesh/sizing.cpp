@@ -152,10 +152,14 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
     // size_max, where the obstacle planes are searched, and keeps the obstacle-proximity tensor,
     // so a coarsened garment cannot cut into the body it hangs on.
     auto& coarsening = mesh.face_attrs().get_or_add<double>(kCoarseningAttr, 1.0);
+    auto& fold_led = mesh.face_attrs().get_or_add<double>(kFoldLedAttr, 0.0);
     for (FaceId f : mesh.faces()) {
       const Mat2& physical = before[static_cast<std::size_t>(f.idx)];
       if (face[f] != physical) face[f] = clamp_sizing(planes.empty() ? face[f] : tensor_max(face[f], obstacle_metric(mesh, f, planes)), p);
-      coarsening[f] = std::max(face[f] == physical ? 1.0 : metric_ratio(physical, face[f]), modifier->fold_coarsening(mesh, f, face[f]));
+      const double against_physics = face[f] == physical ? 1.0 : metric_ratio(physical, face[f]);
+      const double against_folds = modifier->fold_coarsening(mesh, f, face[f]);
+      coarsening[f] = std::max(against_physics, against_folds);
+      fold_led[f] = against_folds > against_physics ? 1.0 : 0.0;
     }
   }
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());

@@ -39,6 +39,9 @@ inline constexpr const char* kFaceSizingAttr = "face_sizing";
 // the modifier did not coarsen), or than the folds the modifier says it cannot show
 // (FaceSizingModifier::fold_coarsening), whichever is larger.
 inline constexpr const char* kCoarseningAttr = "coarsening";
+// Face attribute (double) written beside kCoarseningAttr: 1 where the folds the modifier cannot
+// show set the coarsening (they asked for more than the physical tensor), 0 elsewhere.
+inline constexpr const char* kFoldLedAttr = "fold_led";
 
 class FaceSizingModifier {
  public:

@@ -277,10 +277,16 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
     compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
     if (views[gi]) {
       // A face the camera lets be coarser than its physics asks cannot form the wrinkles that
-      // would take up its compression (membrane.hpp).
+      // would take up its compression (membrane.hpp); where the folds too fine for the image led,
+      // the face softens as such folds would form, over view.fold_time, from its last factor
+      // (a face attribute, so split faces keep their parent's and a checkpoint keeps them all).
       const auto& coarsening = mesh.face_attrs().get<double>(kCoarseningAttr);
+      const auto& fold_led = mesh.face_attrs().get<double>(kFoldLedAttr);
       auto& compression = mesh.face_attrs().get_or_add<double>(kCompressionAttr, 1.0);
-      for (FaceId f : mesh.faces()) compression[f] = coarse_compression_factor(coarsening[f]);
+      for (FaceId f : mesh.faces()) {
+        const double target = coarse_compression_factor(coarsening[f]);
+        compression[f] = fold_led[f] > 0 ? eased_compression(compression[f], target, scene_.frame_time, scene_.view.fold_time) : target;
+      }
     }
     started_with[gi] = mesh;  // sizing moved no node: the frame's start mesh, with this frame's factors
     remeshed[gi] = remesh(mesh, RemeshOptions{}, &standing, static_cast<int>(gi));

@@ -62,6 +62,9 @@ struct ViewParams {
   // (membrane.hpp) measures the face's coarsening against these folds too; it fades out as
   // they grow to the whole floor on screen. 0: off.
   double fold_length = 0.02;
+  // s: where those folds set a face's coarsening, its compression factor softens to the law's
+  // over this time rather than at once, as the folds take time to form (0: at once).
+  double fold_time = 0.4;
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.
   bool motion_anticipation = true;

@@ -202,5 +202,22 @@ TEST(Membrane, CoarseCompressionFactorIsOneAtItsOwnResolutionAndFallsAsTheSquare
   EXPECT_EQ(coarse_compression_factor(1e300), 1e-6);
 }
 
+// Softening over a settle time, by hand: towards 1/16 in steps of a quarter of it, the factor
+// is 1/16^(1/4) = 1/2, then 1/4, 1/8, and 1/16 at the settle time, where it stays; a step longer
+// than the rest stops at the target; stiffening, an equal target or settle 0 take the target.
+TEST(Membrane, EasedCompressionSoftensGeometricallyOverTheSettleTimeAndStiffensAtOnce) {
+  double c = 1;
+  for (double expected : {0.5, 0.25, 0.125, 0.0625, 0.0625}) {
+    c = eased_compression(c, 1.0 / 16, 0.1, 0.4);
+    EXPECT_NEAR(c, expected, 1e-15);
+  }
+  EXPECT_DOUBLE_EQ(eased_compression(0.125, 1.0 / 16, 0.3, 0.4), 1.0 / 16);
+  EXPECT_EQ(eased_compression(0.0625, 0.5, 0.1, 0.4), 0.5);
+  EXPECT_EQ(eased_compression(0.25, 0.25, 0.1, 0.4), 0.25);
+  EXPECT_EQ(eased_compression(1.0, 1e-4, 0.1, 0.0), 1e-4);
+  // From a factor already soft, the same step takes it the same fraction of the way in logs.
+  EXPECT_NEAR(eased_compression(0.5, 1e-4, 0.1, 0.4), 0.05, 1e-15);
+}
+
 }  // namespace
 }  // namespace vdc

@@ -4,6 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <tuple>
 
 #include "core/mesh_build.hpp"
 #include "remesh/remesher.hpp"
@@ -153,14 +154,21 @@ TEST(Sizing, TheCoarseningRecordedIsAlsoAgainstTheFoldsAModifierCannotShow) {
   Mesh rest = build_mesh(make_grid(1, 1, 4, 4));  // every face at size_max: physics asks nothing
   const FoldingModifier unchanged(1, 9);
   compute_sizing(rest, p, &unchanged);
-  for (FaceId f : rest.faces()) EXPECT_NEAR(rest.face_attrs().get<double>(kCoarseningAttr)[f], 9.0, 1e-12);
-  // The shear flow above: a quarter of the tensor is a coarsening of 4 against physics.
+  for (FaceId f : rest.faces()) {
+    EXPECT_NEAR(rest.face_attrs().get<double>(kCoarseningAttr)[f], 9.0, 1e-12);
+    EXPECT_EQ(rest.face_attrs().get<double>(kFoldLedAttr)[f], 1.0);
+  }
+  // The shear flow above: a quarter of the tensor is a coarsening of 4 against physics, which
+  // leads against folds of 2 and not against folds of 16.
   Mesh shear = build_mesh(make_grid(1, 1, 4, 4));
   for (NodeId n : shear.nodes()) shear.v(n) = Vec3(0, 5 * shear.x(n).x(), 0);
-  for (const auto& [folds, recorded] : {std::pair{2.0, 4.0}, std::pair{16.0, 16.0}}) {
+  for (const auto& [folds, recorded, led] : {std::tuple{2.0, 4.0, 0.0}, std::tuple{16.0, 16.0, 1.0}}) {
     const FoldingModifier quarter(0.25, folds);
     compute_sizing(shear, p, &quarter);
-    for (FaceId f : shear.faces()) EXPECT_NEAR(shear.face_attrs().get<double>(kCoarseningAttr)[f], recorded, 1e-9);
+    for (FaceId f : shear.faces()) {
+      EXPECT_NEAR(shear.face_attrs().get<double>(kCoarseningAttr)[f], recorded, 1e-9);
+      EXPECT_EQ(shear.face_attrs().get<double>(kFoldLedAttr)[f], led);
+    }
   }
 }
 
