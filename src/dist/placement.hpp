@@ -1,7 +1,7 @@
 // Which process of a run steps which garment group. Groups start on processes longest
 // processing time first (Graham 1969) by their predicted cost, and move between processes at
-// checkpoints, one at a time from the busiest process, when the measured costs say the move
-// pays for itself before the next checkpoint.
+// checkpoints, given or traded away by the busiest process, when the measured costs say the
+// move pays for itself before the next checkpoint.
 #pragma once
 #include <vector>
 
@@ -16,11 +16,14 @@ struct GroupMove {
 };
 
 // Moves of groups from `owner` (a process per group). `seconds`: each group's measured seconds
-// a frame; a process's load is the sum of its groups'. Each move takes the group off the
-// busiest process to the least loaded one (the lowest rank among equals) that lowers the
-// greater of the two loads most; it is made only when that gain over `frames_ahead` frames
-// exceeds `move_seconds` (the group's measured cost of being sent and rebuilt). Moves follow
-// while one pays, at most one a group.
+// a frame; a process's time over the next `frames_ahead` frames is the sum of its groups'
+// seconds times those frames plus `move_seconds` of each group it receives (the group's
+// measured cost of being sent and rebuilt). Step by step, the busiest process gives one of its
+// groups to another process, or trades one for a lighter group of another, whichever leaves
+// the greater of the two processes' times least; a step is made only when that is below the
+// busiest process's time by more than kLeastGain of it, and each group moves at most once.
+// The moves are listed by group.
+inline constexpr double kLeastGain = 0.01;
 std::vector<GroupMove> rebalance(const std::vector<int>& owner, const std::vector<double>& seconds, const std::vector<double>& move_seconds,
                                  int processes, int frames_ahead);
 
