@@ -3,9 +3,11 @@
 #include "collision/collider.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <numeric>
 #include <optional>
+#include <utility>
 
 #include "collision/candidates.hpp"
 #include "collision/impact_zone.hpp"
@@ -193,8 +195,13 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const bool movable = p.obstacle < 0 && !fixed[static_cast<std::size_t>(p.index)];
       return PointPath{p0(p), p1(p), movable ? p.index : -1};
     };
+    // Each impact is keyed by (query primitive, obstacle or -1, the other primitive), a cloth
+    // edge pair from its lower edge, and the impacts are taken in key order: the hierarchies
+    // decide the order candidates are met in, and which edge of a cloth pair meets the other (a
+    // kept hierarchy and one built afresh, as after a resumption, differ), the results do not.
+    using Key = std::array<int32_t, 3>;
     struct Hits {
-      std::vector<ImpactConstraint> found;
+      std::vector<std::pair<Key, ImpactConstraint>> found;
       int32_t met = 0;  // candidates met by this query primitive
     };
     std::atomic<int64_t> tally{0};
@@ -202,22 +209,22 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       if ((++out.met & 63) == 0) tally.fetch_add(64, std::memory_order_relaxed);
       return tally.load(std::memory_order_relaxed) <= budget;
     };
-    auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri, Hits& out) {
+    auto vf = [&](const PointRef& p, const std::array<PointRef, 3>& tri, const Key& key, Hits& out) {
       if (!within_budget(out)) return;
-      if (auto hit = vertex_face_impact(path(p), path(tri[0]), path(tri[1]), path(tri[2]), eta)) out.found.push_back(*hit);
+      if (auto hit = vertex_face_impact(path(p), path(tri[0]), path(tri[1]), path(tri[2]), eta)) out.found.push_back({key, *hit});
     };
-    auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, Hits& out) {
+    auto ee = [&](const PointRef& a, const PointRef& b, const PointRef& c, const PointRef& d, const Key& key, Hits& out) {
       if (!within_budget(out)) return;
-      if (auto hit = edge_edge_impact(path(a), path(b), path(c), path(d), eta)) out.found.push_back(*hit);
+      if (auto hit = edge_edge_impact(path(a), path(b), path(c), path(d), eta)) out.found.push_back({key, *hit});
     };
 
     // Cloth vertices against cloth and obstacle faces.
     std::vector<Hits> vertex_hits(static_cast<std::size_t>(num_nodes_));
     vertex_face_candidates(
         trees, only_moved, params.threads, [&](int32_t v) { return path_box({PointRef{-1, v}}); },
-        [&](int32_t v, int32_t f) { vf({-1, v}, cloth_tri(static_cast<std::size_t>(f)), vertex_hits[static_cast<std::size_t>(v)]); },
+        [&](int32_t v, int32_t f) { vf({-1, v}, cloth_tri(static_cast<std::size_t>(f)), {v, -1, f}, vertex_hits[static_cast<std::size_t>(v)]); },
         [&](int32_t v, std::size_t o, int32_t f) {
-          vf({-1, v}, obstacle_tri(o, static_cast<std::size_t>(f)), vertex_hits[static_cast<std::size_t>(v)]);
+          vf({-1, v}, obstacle_tri(o, static_cast<std::size_t>(f)), {v, static_cast<int32_t>(o), f}, vertex_hits[static_cast<std::size_t>(v)]);
         });
     // Obstacle vertices against cloth faces.
     std::vector<std::vector<Hits>> obstacle_hits(obstacles_.size());
@@ -230,23 +237,24 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
         trees, obstacle_vertices, only_moved, params.threads,
         [&](std::size_t o, int32_t v) { return obstacle_trees_[o].vertex_box(v); },
         [&](std::size_t o, int32_t v, int32_t f) {
-          vf({static_cast<int32_t>(o), v}, cloth_tri(static_cast<std::size_t>(f)), obstacle_hits[o][static_cast<std::size_t>(v)]);
+          vf({static_cast<int32_t>(o), v}, cloth_tri(static_cast<std::size_t>(f)), {v, static_cast<int32_t>(o), f}, obstacle_hits[o][static_cast<std::size_t>(v)]);
         });
     // Cloth edges against cloth edges and obstacle edges.
     std::vector<Hits> edge_hits(cloth_edges_.size());
     edge_edge_candidates(
         trees, only_moved, 0.0, params.threads,
         [&](int32_t e) { return edge_boxes[static_cast<std::size_t>(e)]; },
-        [&](int32_t ea, int32_t eb) {
+        [&](int32_t met_by, int32_t other) {
+          const int32_t ea = std::min(met_by, other), eb = std::max(met_by, other);
           const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
           const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
-          ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
+          ee({-1, A[0]}, {-1, A[1]}, {-1, B[0]}, {-1, B[1]}, {ea, -1, eb}, edge_hits[static_cast<std::size_t>(met_by)]);
         },
         [&](std::size_t o, int32_t ea, int32_t eo) {
           const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
           const auto& B = obstacle_edges_[o][static_cast<std::size_t>(eo)];
           const auto oi = static_cast<int32_t>(o);
-          ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, edge_hits[static_cast<std::size_t>(ea)]);
+          ee({-1, A[0]}, {-1, A[1]}, {oi, B[0]}, {oi, B[1]}, {ea, oi, eo}, edge_hits[static_cast<std::size_t>(ea)]);
         });
     int64_t met = 0;
     for (const Hits& h : vertex_hits) met += h.met;
@@ -264,10 +272,16 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       return stats;
     }
     std::vector<ImpactConstraint> found;
-    for (const Hits& h : vertex_hits) found.insert(found.end(), h.found.begin(), h.found.end());
-    for (const auto& per_obstacle : obstacle_hits)
-      for (const Hits& h : per_obstacle) found.insert(found.end(), h.found.begin(), h.found.end());
-    for (const Hits& h : edge_hits) found.insert(found.end(), h.found.begin(), h.found.end());
+    auto take = [&](std::vector<std::pair<Key, ImpactConstraint>> hits) {
+      std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (auto& h : hits) found.push_back(std::move(h.second));
+    };
+    for (Hits& h : vertex_hits) take(std::move(h.found));
+    for (auto& per_obstacle : obstacle_hits)
+      for (Hits& h : per_obstacle) take(std::move(h.found));
+    std::vector<std::pair<Key, ImpactConstraint>> edge_found;  // a cloth pair under either edge: sorted as one
+    for (Hits& h : edge_hits) edge_found.insert(edge_found.end(), h.found.begin(), h.found.end());
+    take(std::move(edge_found));
 
     stats.impacts += static_cast<int>(found.size());
     if (found.empty()) {

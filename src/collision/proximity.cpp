@@ -4,6 +4,7 @@
 // have an outside (their faces' normals), so a cloth point that has sunk into an obstacle is
 // pushed back out, not further in.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -43,6 +44,14 @@ Vec3 obstacle_direction(const Vec3& sep, const Vec3& outward, double band) {
   if (sep.dot(outward) > 0 && len > 0.1 * band) return sep / len;
   return outward;
 }
+
+// Whether a kept candidate (distance, primitive) stays before a new one: nearer, or as near
+// and lower-numbered.
+bool nearer_or_first(double kept, int32_t kept_index, double dist, int32_t index) {
+  return kept < dist || (kept == dist && kept_index <= index);
+}
+
+using EdgePairKey = std::array<int32_t, 3>;
 
 }  // namespace
 
@@ -98,6 +107,10 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   // Cloth vertices: the nearest cloth face on each side, the nearest face of each obstacle.
   const std::size_t per_vertex = 2 + num_obstacles;
   std::vector<std::optional<ProximityPair>> vertex_pairs(static_cast<std::size_t>(num_nodes_) * per_vertex);
+  // The face each slot holds: of two faces equally near, the lower-numbered one, so that the
+  // pairs do not depend on the order the hierarchies meet them in (a kept hierarchy and one
+  // built afresh, as after a resumption, meet them in different orders).
+  std::vector<int32_t> slot_face(vertex_pairs.size(), -1);
   std::vector<double> nearest_obstacle(static_cast<std::size_t>(num_nodes_) * num_obstacles, band);  // per vertex and obstacle
   auto cloth_face = [&](int32_t i, int32_t f) {
     const auto& t = cloth_faces_[static_cast<std::size_t>(f)];
@@ -114,8 +127,10 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     if ((sep - sep.dot(face_normal) * face_normal).norm() > 1e-6 * band) return;
     const Vec3 n = dist > 1e-9 * band ? Vec3(sep / dist) : face_normal;
     if (n.squaredNorm() == 0) return;
-    auto& slot = vertex_pairs[static_cast<std::size_t>(i) * per_vertex + (n.dot(face_normal) >= 0 ? 0 : 1)];
-    if (slot && slot->distance <= dist) return;
+    const std::size_t at = static_cast<std::size_t>(i) * per_vertex + (n.dot(face_normal) >= 0 ? 0 : 1);
+    auto& slot = vertex_pairs[at];
+    if (slot && nearer_or_first(slot->distance, slot_face[at], dist, f)) return;
+    slot_face[at] = f;
     ProximityPair pair;
     set_cloth(pair, 0, i, 1.0);
     for (int k = 0; k < 3; ++k) set_cloth(pair, k + 1, t[static_cast<std::size_t>(k)], -w[k]);
@@ -132,10 +147,12 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     const Vec3 sep = p - (w[0] * a + w[1] * b + w[2] * c);
     const double dist = sep.norm();
     double& best = nearest_obstacle[static_cast<std::size_t>(i) * num_obstacles + o];
-    if (dist >= best) return;
+    int32_t& best_face = slot_face[static_cast<std::size_t>(i) * per_vertex + 2 + o];
+    if (best_face < 0 ? dist >= best : nearer_or_first(best, best_face, dist, f)) return;
     const Vec3 outward = face_outward(obstacles_[o], ox, f);
     if (outward.squaredNorm() == 0) return;
     best = dist;
+    best_face = f;
     ProximityPair pair;
     set_cloth(pair, 0, i, 1.0);
     for (int k = 0; k < 3; ++k) set_obstacle(pair, k + 1, o, t[static_cast<std::size_t>(k)], -w[k]);
@@ -148,6 +165,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   // Obstacle vertices: the nearest cloth face.
   std::vector<std::vector<std::optional<ProximityPair>>> obstacle_vertex_pairs(num_obstacles);
   std::vector<std::vector<double>> nearest_cloth(num_obstacles);
+  std::vector<std::vector<int32_t>> nearest_cloth_face(num_obstacles);
   std::vector<std::vector<std::optional<Vec3>>> outwards(num_obstacles);  // computed once a vertex has a cloth face within the band
   std::vector<std::size_t> obstacle_vertices;
   for (std::size_t o = 0; o < num_obstacles; ++o) {
@@ -155,6 +173,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     obstacle_vertices.push_back(n);
     obstacle_vertex_pairs[o].resize(n);
     nearest_cloth[o].assign(n, band);
+    nearest_cloth_face[o].assign(n, -1);
     outwards[o].resize(n);
   }
   obstacle_vertex_candidates(
@@ -167,11 +186,13 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
         const Vec3 w = closest_triangle_weights(p, a, b, c);
         const Vec3 sep = (w[0] * a + w[1] * b + w[2] * c) - p;
         const double dist = sep.norm();
-        if (dist >= nearest_cloth[o][iu]) return;
+        int32_t& best_face = nearest_cloth_face[o][iu];
+        if (best_face < 0 ? dist >= nearest_cloth[o][iu] : nearer_or_first(nearest_cloth[o][iu], best_face, dist, f)) return;
         std::optional<Vec3>& outward = outwards[o][iu];
         if (!outward) outward = outward_around(obstacles_[o], obstacle_adjacency_[o].vertex, obstacle_x[o], i);
         if (outward->squaredNorm() == 0) return;
         nearest_cloth[o][iu] = dist;
+        best_face = f;
         ProximityPair pair;
         for (int k = 0; k < 3; ++k) set_cloth(pair, k, t[static_cast<std::size_t>(k)], w[k]);
         set_obstacle(pair, 3, o, i, -1.0);
@@ -182,8 +203,12 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
 
   // Edges: pairs whose closest points are inside both edges, each cloth pair once.
   auto interior = [](double s) { return s > 1e-6 && s < 1 - 1e-6; };
-  std::vector<std::vector<ProximityPair>> edge_pairs(cloth_edges_.size());
-  auto cloth_edge_pair = [&](int32_t ea, int32_t eb) {
+  // Each pair under the edge that met it, keyed by (lower cloth edge, obstacle or -1, the other
+  // edge) and computed from the lower cloth edge: the hierarchies decide which edge of a cloth
+  // pair meets the other, the key and the pair do not.
+  std::vector<std::vector<std::pair<EdgePairKey, ProximityPair>>> edge_pairs(cloth_edges_.size());
+  auto cloth_edge_pair = [&](int32_t met_by, int32_t other) {
+    const int32_t ea = std::min(met_by, other), eb = std::max(met_by, other);
     const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
     const auto& B = cloth_edges_[static_cast<std::size_t>(eb)];
     const Vec3 a0 = cx(A[0]), a1 = cx(A[1]), b0 = cx(B[0]), b1 = cx(B[1]);
@@ -199,7 +224,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     set_cloth(pair, 3, B[1], -su.y());
     pair.normal = sep / dist;
     pair.distance = dist;
-    edge_pairs[static_cast<std::size_t>(ea)].push_back(pair);
+    edge_pairs[static_cast<std::size_t>(met_by)].push_back({{ea, -1, eb}, pair});
   };
   auto obstacle_edge_pair = [&](std::size_t o, int32_t ea, int32_t eb) {
     const auto& A = cloth_edges_[static_cast<std::size_t>(ea)];
@@ -220,7 +245,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     set_obstacle(pair, 3, o, B[1], -su.y());
     pair.normal = obstacle_direction(sep, outward, band);
     pair.distance = pair.normal.dot(sep);
-    edge_pairs[static_cast<std::size_t>(ea)].push_back(pair);
+    edge_pairs[static_cast<std::size_t>(ea)].push_back({{ea, static_cast<int32_t>(o), eb}, pair});
   };
   edge_edge_candidates(trees, nullptr, band, threads, [](int32_t) { return Aabb(); }, cloth_edge_pair, obstacle_edge_pair);
 
@@ -233,8 +258,10 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   for (const auto& list : obstacle_vertex_pairs)
     for (const auto& p : list)
       if (p) keep(*p);
-  for (const auto& list : edge_pairs)
-    for (const auto& p : list) keep(p);
+  std::vector<std::pair<EdgePairKey, ProximityPair>> by_key;
+  for (auto& list : edge_pairs) by_key.insert(by_key.end(), list.begin(), list.end());
+  std::sort(by_key.begin(), by_key.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [key, p] : by_key) keep(p);
   return pairs;
 }
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include "collision/intersection.hpp"
 #include "core/bvh.hpp"
@@ -104,11 +106,16 @@ class Untangler {
         if (v == B[0] || v == B[1] || v == B[2]) return;
       if (cloth_contour(A, B)) ++cloth_pairs;
     });
+    // The pairs with each obstacle in index order: its hierarchy may be the collider's, kept
+    // from step to step, or one built afresh (after a resumption), which meet them in different
+    // orders, and the pushes add up in this one.
     for (std::size_t o = 0; o < obstacles_.size(); ++o) {
       const auto& ox = obstacle_x_[o];
-      tree.pairs_with(*obstacle_tree_[o], [&](int32_t fc, int32_t fo) {
+      std::vector<std::pair<int32_t, int32_t>> pairs;
+      tree.pairs_with(*obstacle_tree_[o], [&](int32_t fc, int32_t fo) { pairs.emplace_back(fc, fo); });
+      std::sort(pairs.begin(), pairs.end());
+      for (const auto& [fc, fo] : pairs)
         if (obstacle_push(faces_[static_cast<std::size_t>(fc)], obstacles_[o].faces[static_cast<std::size_t>(fo)], ox)) ++obstacle_pairs;
-      });
     }
     return {cloth_pairs, obstacle_pairs};
   }

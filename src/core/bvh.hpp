@@ -94,11 +94,12 @@ class Bvh {
   }
 
   // Branch and bound for the nearest primitive to p: `dist(i)` returns primitive i's distance
-  // and is called only for primitives whose box is nearer than the best so far, which starts
-  // at `best` (a search radius) and ends as the smallest distance found.
+  // and is called only for primitives whose box is no farther than the best so far, which
+  // starts at `best` (a search radius) and ends as the smallest distance found. Every primitive
+  // as near as the nearest is met, whatever the tree's shape, so a caller can break ties.
   template <class F>
   void nearest(const Vec3& p, double& best, F&& dist) const {
-    traverse([&](const Node& n) { return n.box.distance(p) < best; }, [&](int32_t prim) { best = std::min(best, dist(prim)); },
+    traverse([&](const Node& n) { return n.box.distance(p) <= best; }, [&](int32_t prim) { best = std::min(best, dist(prim)); },
              [&](const Aabb& l, const Aabb& r) { return l.distance(p) <= r.distance(p); });
   }
 

@@ -2,6 +2,7 @@
 #include "remesh/obstacle_planes.hpp"
 
 #include <memory>
+#include <utility>
 
 #include "collision/distance.hpp"
 #include "core/bvh.hpp"
@@ -44,6 +45,9 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
                                                    const std::vector<const Bvh*>& obstacle_trees) {
   std::vector<ObstaclePlane> planes(points.size());
   std::vector<double> best(points.size(), radius);
+  // The face each point's plane comes from (obstacle, face): of two equally near, the first in
+  // that order, so that the planes do not depend on the order a hierarchy meets the faces in.
+  std::vector<std::pair<std::size_t, int32_t>> best_face(points.size(), {0, -1});
   std::vector<std::unique_ptr<Bvh>> built;
   const std::vector<const Bvh*> trees = face_trees_at(obstacles, obstacle_x, obstacle_trees, threads, built);
   const auto n = static_cast<int64_t>(points.size());
@@ -59,7 +63,9 @@ std::vector<ObstaclePlane> nearest_obstacle_planes(const std::vector<Vec3>& poin
         const auto f = static_cast<std::size_t>(fi);
         const Vec3 q = closest_on_face(p, obstacles[o], ox, f);
         const double d = (p - q).norm();
-        if (d < best[i]) {
+        const std::pair<std::size_t, int32_t> here{o, fi};
+        if (d < best[i] || (d == best[i] && best_face[i].second >= 0 && here < best_face[i])) {
+          best_face[i] = here;
           planes[i].point = q;
           planes[i].normal = d > 1e-9 ? Vec3((p - q) / d) : Vec3(area_normal(corner(f, 0), corner(f, 1), corner(f, 2)).normalized());
         }

@@ -129,10 +129,10 @@ void Simulation::remesh_garments(FrameStats& stats) {
   // adaptive run's, and the view's coarsening starts with the shot.
   const bool viewing = options_.mode == SimMode::View && frame_ >= 0;
   const std::vector<std::vector<Vec3>> obstacle_x = obstacle_positions(time());
-  // The collider's hierarchies, unless a restart will drop them (a resumed run has none yet, and
-  // must find what an uninterrupted one finds).
+  // The collider's hierarchies where it has them (a resumed run has none yet, and builds its
+  // own: the planes do not depend on which).
   const std::vector<const Bvh*> obstacle_trees =
-      restart_pending_ ? std::vector<const Bvh*>{} : collider_->obstacle_face_trees(obstacle_x, options_.threads);
+      collider_ ? collider_->obstacle_face_trees(obstacle_x, options_.threads) : std::vector<const Bvh*>{};
   // For the proximity criterion the other garments are obstacles too: a layer's chords must not
   // sag through the layer beside it any more than through the body.
   std::vector<CollisionMesh> garment_meshes;
@@ -379,8 +379,9 @@ UntangleReport Simulation::untangle_garments(FrameStats& stats) {
 }
 
 void Simulation::rebuild() {
-  // Remeshing keeps the obstacles' hierarchies in the collider; a restart starts them afresh too.
-  const bool restart = restart_pending_ || !collider_;
+  // The collider keeps the obstacles' hierarchies through remeshing and restarts alike: what it
+  // finds does not depend on them (it takes its candidates in a fixed order), so a run resumed
+  // with hierarchies built afresh finds what this one does.
   restart_pending_ = false;
   model_ = ClothModel();
   offsets_.clear();
@@ -388,7 +389,7 @@ void Simulation::rebuild() {
   LinearSolverParams solver_params = scene_.solver.params;
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);
-  if (restart) collider_ = std::make_unique<Collider>(model_.face_nodes, obstacle_faces_, model_.num_nodes);
+  if (!collider_) collider_ = std::make_unique<Collider>(model_.face_nodes, obstacle_faces_, model_.num_nodes);
   else collider_->set_cloth(model_.face_nodes, model_.num_nodes);
 }
 

@@ -86,9 +86,11 @@ class Simulation {
   // Simulates the next frame. Throws SimulationError when a step fails even at the smallest size.
   FrameStats step_frame();
 
-  // Drops what the solvers carry from step to step (the preconditioner's factorization, the
-  // last velocity change as a first guess, the collision hierarchies): the next frame starts
-  // them afresh from the meshes, as a simulation resumed from this frame does.
+  // Drops what the linear solver carries from step to step (the preconditioner's factorization,
+  // the last velocity change as a first guess): the next frame starts it afresh from the meshes,
+  // as a simulation resumed from this frame does. The collision hierarchies are kept: nothing
+  // the collider finds depends on them. With the direct solver (the default) nothing carried
+  // changes a result, and a restart changes nothing in the run.
   void restart_solvers() { restart_pending_ = true; }
   // Shares the bodies' depth images (view.occlusion) with the scene's other garment groups,
   // stepped side by side at the same times.
