@@ -1,19 +1,25 @@
 // Scaling on paper: a run's measured per-group, per-frame seconds (groups.csv of an MPI run)
 // replayed through the balancer's own policy (dist/placement.hpp) for other numbers of
-// processes, static placement against moves at checkpoints.
+// processes, static placement against moves.
 //
 // Model: a frame takes the greatest load of its processes (the sum of their groups' measured
 // seconds) plus the frame's exchange, the measured one times log2 of the processes (tree
-// collectives); a group moved at a checkpoint adds its faces times the measured rebuild
-// seconds a face to its receiver's next frame, and with --restart-seconds-per-face every
-// process's next frame after a checkpoint where the balancer looks pays that much for each face it holds (the
-// solvers and collision hierarchies started afresh, and the checkpoint part made). Both start longest first by the groups' faces
-// at the first frame; static placement never moves. Efficiency: the groups' seconds over
-// processes times the replayed wall time. With --run-ahead the processes wait for each other
-// only at checkpoints (the groups are independent between them): an interval between
-// checkpoints takes the greatest sum of a process's seconds over it.
+// collectives); the balancer looks every --every frames (1: after every frame, as a run with
+// the direct solver does; with an iterative solver it looks at checkpoints only), and a group
+// it moves adds its faces times the measured rebuild seconds a face to its receiver's next
+// frame. Checkpoints come every --checkpoint-every frames (by default as often as the balancer
+// looks), where with --restart-seconds-per-face every process's next frame pays that much for
+// each face it holds (its checkpoint parts made, its solvers restarted), whichever the policy,
+// and with --checkpoint-seconds the frame waits that long more for the first process to write
+// the file.
+// Both start longest first by the groups' faces at the first frame; static placement never
+// moves. Efficiency: the groups' seconds over processes times the replayed wall time. With
+// --run-ahead the processes wait for each other only at checkpoints (the groups are
+// independent between them): an interval between checkpoints takes the greatest sum of a
+// process's seconds over it.
 //
-// usage: vdcloth_balance_replay RUN_DIR [--every K] [--processes N]... [--seconds-per-face S] [--restart-seconds-per-face S] [--exchange S] [--run-ahead]
+// usage: vdcloth_balance_replay RUN_DIR [--every K] [--checkpoint-every C] [--processes N]... [--seconds-per-face S]
+//                               [--restart-seconds-per-face S] [--checkpoint-seconds S] [--exchange S] [--run-ahead]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -77,7 +83,8 @@ struct Replay {
   double efficiency(int n) const { return work / (n * wall); }
 };
 
-Replay replay(const Costs& c, int n, int every, bool balance, double seconds_per_face, double restart_per_face, double exchange, bool run_ahead) {
+Replay replay(const Costs& c, int n, int every, int checkpoint_every, bool balance, double seconds_per_face, double restart_per_face,
+              double checkpoint_seconds, double exchange, bool run_ahead) {
   std::vector<int> owner = vdc::place_longest_first(c.faces.front(), n);
   Replay r;
   std::vector<double> since(c.groups.size(), 0.0), moving(static_cast<std::size_t>(n), 0.0);
@@ -94,8 +101,9 @@ Replay replay(const Costs& c, int n, int every, bool balance, double seconds_per
     }
     ++frames_since;
     const int frame = static_cast<int>(f) + 1;
+    const bool checkpoint = frame % checkpoint_every == 0;
     // In step, every frame waits for the busiest process; running ahead, only checkpoints do.
-    if (!run_ahead || frame % every == 0 || f + 1 == c.seconds.size()) {
+    if (!run_ahead || checkpoint || f + 1 == c.seconds.size()) {
       r.wall += *std::max_element(load.begin(), load.end()) + frame_exchange;
       std::fill(load.begin(), load.end(), 0.0);
     }
@@ -111,9 +119,12 @@ Replay replay(const Costs& c, int n, int every, bool balance, double seconds_per
         moving[static_cast<std::size_t>(m.to)] += cost[static_cast<std::size_t>(m.group)];
         ++r.moves;
       }
-      for (std::size_t g = 0; g < owner.size(); ++g) moving[static_cast<std::size_t>(owner[g])] += c.faces[f][g] * restart_per_face;
       std::fill(since.begin(), since.end(), 0.0);
       frames_since = 0;
+    }
+    if (checkpoint && f + 1 < c.seconds.size()) {
+      for (std::size_t g = 0; g < owner.size(); ++g) moving[static_cast<std::size_t>(owner[g])] += c.faces[f][g] * restart_per_face;
+      r.wall += checkpoint_seconds;
     }
   }
   return r;
@@ -141,13 +152,14 @@ double placed_anew_efficiency(const Costs& c, int n, std::size_t lag) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: vdcloth_balance_replay RUN_DIR [--every K] [--processes N]... [--seconds-per-face S] [--restart-seconds-per-face S] [--exchange S] [--run-ahead]\n";
+    std::cerr << "usage: vdcloth_balance_replay RUN_DIR [--every K] [--checkpoint-every C] [--processes N]... [--seconds-per-face S]"
+                 " [--restart-seconds-per-face S] [--checkpoint-seconds S] [--exchange S] [--run-ahead]\n";
     return 2;
   }
   const std::string dir = argv[1];
-  int every = 10;
+  int every = 10, checkpoint_every = 0;
   std::vector<int> processes;
-  double seconds_per_face = -1, restart_per_face = 0, exchange = -1;
+  double seconds_per_face = -1, restart_per_face = 0, checkpoint_seconds = 0, exchange = -1;
   bool run_ahead = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -161,9 +173,11 @@ int main(int argc, char** argv) {
     }
     const std::string v = argv[++i];
     if (a == "--every") every = std::stoi(v);
+    else if (a == "--checkpoint-every") checkpoint_every = std::stoi(v);
     else if (a == "--processes") processes.push_back(std::stoi(v));
     else if (a == "--seconds-per-face") seconds_per_face = std::stod(v);
     else if (a == "--restart-seconds-per-face") restart_per_face = std::stod(v);
+    else if (a == "--checkpoint-seconds") checkpoint_seconds = std::stod(v);
     else if (a == "--exchange") exchange = std::stod(v);
     else {
       std::cerr << "unknown option " << a << "\n";
@@ -196,14 +210,15 @@ int main(int argc, char** argv) {
       std::sort(w.begin(), w.end());
       exchange = w.empty() ? 0.0 : w[w.size() / 2];
     }
-    std::printf("%zu groups, %zu frames, checkpoints every %d frames, rebuild %.3g s a face, restart %.3g s a face, exchange %.3g s a frame at 2 processes\n",
-                c.groups.size(), c.seconds.size(), every, seconds_per_face, restart_per_face, exchange);
+    if (checkpoint_every <= 0) checkpoint_every = every;
+    std::printf("%zu groups, %zu frames, balanced every %d frames, checkpoints every %d, rebuild %.3g s a face, restart %.3g s a face, checkpoint file %.3g s, exchange %.3g s a frame at 2 processes\n",
+                c.groups.size(), c.seconds.size(), every, checkpoint_every, seconds_per_face, restart_per_face, checkpoint_seconds, exchange);
     if (run_ahead) std::printf("processes wait for each other only at checkpoints\n");
     std::printf("| processes | static efficiency | balanced efficiency | moves | each frame placed anew on the last frame's seconds, free | on its own seconds, free |\n"
                 "| ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (int n : processes) {
-      const Replay s = replay(c, n, every, false, seconds_per_face, restart_per_face, exchange, run_ahead);
-      const Replay b = replay(c, n, every, true, seconds_per_face, restart_per_face, exchange, run_ahead);
+      const Replay s = replay(c, n, every, checkpoint_every, false, seconds_per_face, restart_per_face, checkpoint_seconds, exchange, run_ahead);
+      const Replay b = replay(c, n, every, checkpoint_every, true, seconds_per_face, restart_per_face, checkpoint_seconds, exchange, run_ahead);
       std::printf("| %d | %.1f%% | %.1f%% | %d | %.1f%% | %.1f%% |\n", n, 100 * s.efficiency(n), 100 * b.efficiency(n), b.moves,
                   100 * placed_anew_efficiency(c, n, 1), 100 * placed_anew_efficiency(c, n, 0));
     }

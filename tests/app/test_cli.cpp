@@ -490,10 +490,10 @@ void CliTest::resumed_run_matches(const std::string& mode, bool with_ball) {
   EXPECT_GT(summary["peak_memory_kib"].get<long>(), 0);
 }
 
-// A checkpoint restarts the linear solver and keeps the collision hierarchies; with the direct
-// solver neither changes a result, so the sheet falling on the rising ball (remeshed every
-// frame, collisions with a body whose hierarchies are refit and rebuilt) is the same run with a
-// checkpoint every frame as without any.
+// A checkpoint restarts the linear solver and keeps the collision hierarchies, whose shape
+// changes no result: the sheet falling on the rising ball (remeshed every frame, collisions
+// with a body whose hierarchies are refit and rebuilt), small enough for the restart to change
+// nothing here, is the same run with a checkpoint every frame as without any.
 TEST_F(CliTest, CheckpointsLeaveTheRunAsItIs) {
   // Finer than kHangingSheet, a finer ball and twice the frames: enough contact for a restart
   // that rebuilt the hierarchies, with candidates taken in the order met, to change the run
