@@ -22,7 +22,7 @@ struct RunArgs {
   bool resume = false;
   std::vector<std::string> groups;  // --group: simulate only these garment groups
   Perturbation perturbation;  // --perturb and --perturb-resolution
-  bool force_moves = false;  // --force-moves: every group to the next process at every checkpoint
+  bool force_moves = false;  // --force-moves: every group to the next process wherever groups may move
 };
 
 // args[0] is "run". Throws UsageError.

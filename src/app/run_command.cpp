@@ -1,5 +1,6 @@
 #include "app/run_command.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -274,6 +275,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   // What rank 0 knows of every group: its garments' sizes after the last frame, its seconds
   // since the last checkpoint, and where it has been.
   const auto groups = static_cast<std::size_t>(sim->groups());
+  const bool moves_any_frame = !sim->restart_changes_results();
   std::vector<std::vector<GarmentSize>> sizes(groups);
   for (std::size_t k = 0; k < sim->parts().size(); ++k) sizes[static_cast<std::size_t>(sim->here()[k])] = garment_sizes(*sim->parts()[k]);
   std::vector<double> group_seconds(groups, 0.0);
@@ -319,6 +321,11 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     ProcessReport mine;
     const int next = sim->frame() + 1;
     const bool checkpoint = shot && args.checkpoint_every > 0 && (next % args.checkpoint_every == 0 || next == frames);
+    // Groups may move where the solvers restart anyway (a checkpoint) or, when the linear solver
+    // carries nothing that changes a result, after any frame: a group rebuilt elsewhere from its
+    // part then goes on exactly as it would have here (nothing the collider finds depends on its
+    // hierarchies).
+    const bool balancing = processes > 1 && shot && next < frames && (checkpoint || moves_any_frame);
     try {
       if (shot && next == 1 && args.mesh_every > 0 && !resume) {
         const auto w = std::chrono::steady_clock::now();
@@ -389,31 +396,31 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
             } catch (const OutputError& e) {
               log(std::string(e.what()) + "; the run goes on, resumable from its previous checkpoint");
             }
-            // Moves, where the solvers restart anyway: a group goes on elsewhere exactly as here.
-            if (processes > 1 && next < frames) {
-              std::vector<double> per_frame(groups, 0.0), move_seconds(groups, 0.0);
-              for (std::size_t g = 0; g < groups; ++g) {
-                per_frame[g] = group_frames[g] > 0 ? group_seconds[g] / group_frames[g] : 0.0;
-                double faces = 0;
-                for (const GarmentSize& s : sizes[g]) faces += s.faces;
-                move_seconds[g] = faces * rebuild_seconds_per_face;
-              }
-              if (args.force_moves)
-                for (std::size_t g = 0; g < groups; ++g) plan.moves.push_back({static_cast<int>(g), owner[g], (owner[g] + 1) % processes});
-              else
-                plan.moves = rebalance(owner, per_frame, move_seconds, processes, std::min(args.checkpoint_every, frames - next));
-              for (const GroupMove& m : plan.moves) {
-                log("frame " + std::to_string(next) + ": group " + sim->group_scene(m.group).garments.front().group + " moves from process " +
-                    std::to_string(m.from) + " to process " + std::to_string(m.to) + " (" + number_text(per_frame[static_cast<std::size_t>(m.group)]) +
-                    " s a frame, about " + number_text(move_seconds[static_cast<std::size_t>(m.group)]) + " s to move)");
-                distribution["moves"].push_back({{"frame", next}, {"group", sim->group_scene(m.group).garments.front().group},
-                                                 {"from", m.from}, {"to", m.to}, {"seconds_a_frame", per_frame[static_cast<std::size_t>(m.group)]},
-                                                 {"move_seconds", move_seconds[static_cast<std::size_t>(m.group)]}});
-                owner[static_cast<std::size_t>(m.group)] = m.to;
-              }
-              std::fill(group_seconds.begin(), group_seconds.end(), 0.0);
-              std::fill(group_frames.begin(), group_frames.end(), 0);
+          }
+          // Moves: each group's mean seconds a frame since the last look, over the frames to the next.
+          if (balancing) {
+            std::vector<double> per_frame(groups, 0.0), move_seconds(groups, 0.0);
+            for (std::size_t g = 0; g < groups; ++g) {
+              per_frame[g] = group_frames[g] > 0 ? group_seconds[g] / group_frames[g] : 0.0;
+              double faces = 0;
+              for (const GarmentSize& s : sizes[g]) faces += s.faces;
+              move_seconds[g] = faces * rebuild_seconds_per_face;
             }
+            if (args.force_moves)
+              for (std::size_t g = 0; g < groups; ++g) plan.moves.push_back({static_cast<int>(g), owner[g], (owner[g] + 1) % processes});
+            else
+              plan.moves = rebalance(owner, per_frame, move_seconds, processes, moves_any_frame ? 1 : std::min(args.checkpoint_every, frames - next));
+            for (const GroupMove& m : plan.moves) {
+              log("frame " + std::to_string(next) + ": group " + sim->group_scene(m.group).garments.front().group + " moves from process " +
+                  std::to_string(m.from) + " to process " + std::to_string(m.to) + " (" + number_text(per_frame[static_cast<std::size_t>(m.group)]) +
+                  " s a frame, about " + number_text(move_seconds[static_cast<std::size_t>(m.group)]) + " s to move)");
+              distribution["moves"].push_back({{"frame", next}, {"group", sim->group_scene(m.group).garments.front().group},
+                                               {"from", m.from}, {"to", m.to}, {"seconds_a_frame", per_frame[static_cast<std::size_t>(m.group)]},
+                                               {"move_seconds", move_seconds[static_cast<std::size_t>(m.group)]}});
+              owner[static_cast<std::size_t>(m.group)] = m.to;
+            }
+            std::fill(group_seconds.begin(), group_seconds.end(), 0.0);
+            std::fill(group_frames.begin(), group_frames.end(), 0);
           }
         } catch (...) {
           failure = failure_of(std::current_exception());
@@ -431,12 +438,18 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     waiting = seconds_since(exchange);
     // Each move in the plan's order: the sender and the receiver meet at it, the others go on.
     const auto moves_start = std::chrono::steady_clock::now();
-    std::map<int, std::string> blocks_here;  // this checkpoint's part of each group here
+    std::map<int, std::string> blocks_here;  // this checkpoint's part of each group here (none between checkpoints)
     for (std::size_t k = 0; k < mine.checkpoint_parts.size(); ++k) blocks_here[sim->here()[k]] = std::move(mine.checkpoint_parts[k]);
     if (!plan.stop) try {
       for (const GroupMove& m : plan.moves) {
         if (m.from == cluster.rank()) {
-          cluster.send(m.to, blocks_here.at(m.group));
+          const auto made = blocks_here.find(m.group);
+          if (made != blocks_here.end()) {
+            cluster.send(m.to, made->second);
+          } else {  // between checkpoints: the group's part made for the move
+            const auto k = static_cast<std::size_t>(std::find(sim->here().begin(), sim->here().end(), m.group) - sim->here().begin());
+            cluster.send(m.to, checkpoint_part(*sim->parts().at(k)));
+          }
           sim->drop(m.group);
         } else if (m.to == cluster.rank()) {
           const auto received = std::chrono::steady_clock::now();

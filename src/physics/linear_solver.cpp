@@ -273,6 +273,8 @@ const char* linear_solver_name(LinearSolverKind kind) {
   return "?";
 }
 
+bool carries_state(LinearSolverKind kind) { return kind == LinearSolverKind::CholmodPcg || kind == LinearSolverKind::ConjugateGradient; }
+
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind, const LinearSolverParams& params) {
   switch (kind) {
     case LinearSolverKind::CholmodPcg:

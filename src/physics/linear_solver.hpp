@@ -14,6 +14,10 @@ enum class LinearSolverKind { CholmodPcg, Cholmod, SimplicialLdlt, ConjugateGrad
 // Parses "cholmod-pcg", "cholmod", "ldlt" or "cg"; returns false for anything else.
 bool parse_linear_solver_kind(const std::string& name, LinearSolverKind& kind);
 const char* linear_solver_name(LinearSolverKind kind);
+// Whether the solver carries from one solve to the next anything that changes its results (a
+// first guess, a factorization kept as preconditioner): the iterative ones. A direct solver's
+// result depends on the system alone, so it may be started afresh at any step.
+bool carries_state(LinearSolverKind kind);
 
 struct SolveReport {
   bool ok = false;

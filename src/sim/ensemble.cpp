@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/task_order.hpp"
+#include "physics/linear_solver.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -107,6 +108,8 @@ Ensemble::Ensemble(Scene scene, const SimOptions& options, Simulation::Log log, 
   });
   frame_ = resumed_at;
 }
+
+bool Ensemble::restart_changes_results() const { return carries_state(group_scene(0).solver.linear); }
 
 void Ensemble::restart_solvers() {
   for (auto& p : parts_) p->restart_solvers();

@@ -40,6 +40,10 @@ class Ensemble {
   FrameStats step_frame();
 
   void restart_solvers();  // every part's (Simulation::restart_solvers)
+  // Whether a restart can change what a group does next: the scene's linear solver carries
+  // state from step to step that changes its results (an iterative one). Without it, a group
+  // may be restarted, and so moved, after any frame.
+  bool restart_changes_results() const;
 
   // Hands group g over: its simulation ends here, its scene waits (g must be here).
   void drop(int group);
