@@ -20,6 +20,7 @@
 #include "dist/process_tables.hpp"
 #include "output/camera_export.hpp"
 #include "output/checkpoint.hpp"
+#include "output/checkpoint_writer.hpp"
 #include "output/run_output.hpp"
 #include "sim/ensemble.hpp"
 
@@ -292,11 +293,18 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
     }
     return j;
   };
+  // Rank 0's checkpoints, written while the next frames are made; every way out of the run
+  // waits for the last one (finish_checkpoints), so that a resume finds it.
+  CheckpointWriter checkpoints;
+  auto finish_checkpoints = [&] {
+    if (const std::string failed = checkpoints.finish(); !failed.empty()) log(failed + "; a resume goes on from the checkpoint before it");
+  };
   // A run that cannot go on says why and how far it got, in summary.json (if it can still be
   // written) and on the error stream.
   auto stop_part_way = [&](const Failure& f) {
     if (line_open) out << "\n";
     if (!root) return kExitSimulationFailed;
+    finish_checkpoints();
     try {
       output->write_summary(summary("failed", f.line()));
     } catch (const std::exception&) {  // the error stream still says why
@@ -391,11 +399,8 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
             for (const PartFrame& p : parts) group_table->group_row(sim->group_scene(p.group).garments.front().group, owner[static_cast<std::size_t>(p.group)], p);
           if (checkpoint) {
             progress.usage = usage();
-            try {
-              write_checkpoint(dir + "/" + kCheckpointFile, progress, args.mode, next, blocks);
-            } catch (const OutputError& e) {
-              log(std::string(e.what()) + "; the run goes on, resumable from its previous checkpoint");
-            }
+            const std::string failed = checkpoints.start(dir + "/" + kCheckpointFile, progress, args.mode, next, std::move(blocks));
+            if (!failed.empty()) log(failed + "; the run goes on, resumable from its previous checkpoint");
           }
           // Moves: each group's mean seconds a frame since the last look, over the frames to the next.
           if (balancing) {
@@ -529,6 +534,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   }
   if (line_open) out << "\n";
   if (!root) return kExitOk;
+  finish_checkpoints();
   output->write_summary(summary("done", ""));
   const double this_segment = seconds_since(t0);
   out << "vdcloth: done, " << done - first << " frames in " << format_duration(this_segment) << " ("
