@@ -452,8 +452,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
           if (made != blocks_here.end()) {
             cluster.send(m.to, made->second);
           } else {  // between checkpoints: the group's part made for the move
-            const auto k = static_cast<std::size_t>(std::find(sim->here().begin(), sim->here().end(), m.group) - sim->here().begin());
-            cluster.send(m.to, checkpoint_part(*sim->parts().at(k)));
+            cluster.send(m.to, checkpoint_part(sim->part(m.group)));
           }
           sim->drop(m.group);
         } else if (m.to == cluster.rank()) {

@@ -4,16 +4,31 @@
 // alike. Pairs that share a cloth node are never candidates. A query primitive's candidates come
 // one after another, in the hierarchies' order; query primitives are taken in parallel, so a
 // caller writes only to the query primitive's own results, and what it finds does not depend on
-// the thread count.
+// the thread count. Nor on the hierarchies' shape: results met in their order are put in a key
+// order (in_key_order) before they are used.
 #pragma once
 #include <array>
 #include <cstdint>
+#include <algorithm>
 #include <initializer_list>
+#include <utility>
 #include <vector>
 
 #include "core/bvh.hpp"
 
 namespace vdc {
+
+// The values of keyed results in key order (keys unique): a kept, refit hierarchy and one built
+// afresh (after a resumption) meet candidates in different orders, and which edge of a cloth
+// pair meets the other; results taken this way do not depend on it.
+template <class Key, class T>
+std::vector<T> in_key_order(std::vector<std::pair<Key, T>> keyed) {
+  std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<T> values;
+  values.reserve(keyed.size());
+  for (auto& [key, value] : keyed) values.push_back(std::move(value));
+  return values;
+}
 
 // Subtrees a cloth hierarchy is split into for a parallel descent with another hierarchy: fixed,
 // so that the pairs found, and their order, do not depend on the thread count.

@@ -196,9 +196,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       return PointPath{p0(p), p1(p), movable ? p.index : -1};
     };
     // Each impact is keyed by (query primitive, obstacle or -1, the other primitive), a cloth
-    // edge pair from its lower edge, and the impacts are taken in key order: the hierarchies
-    // decide the order candidates are met in, and which edge of a cloth pair meets the other (a
-    // kept hierarchy and one built afresh, as after a resumption, differ), the results do not.
+    // edge pair by its lower edge, and taken in key order (in_key_order).
     using Key = std::array<int32_t, 3>;
     struct Hits {
       std::vector<std::pair<Key, ImpactConstraint>> found;
@@ -273,8 +271,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     }
     std::vector<ImpactConstraint> found;
     auto take = [&](std::vector<std::pair<Key, ImpactConstraint>> hits) {
-      std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-      for (auto& h : hits) found.push_back(std::move(h.second));
+      for (ImpactConstraint& c : in_key_order(std::move(hits))) found.push_back(std::move(c));
     };
     for (Hits& h : vertex_hits) take(std::move(h.found));
     for (auto& per_obstacle : obstacle_hits)

@@ -45,9 +45,11 @@ Vec3 obstacle_direction(const Vec3& sep, const Vec3& outward, double band) {
   return outward;
 }
 
-// Whether a kept candidate (distance, primitive) stays before a new one: nearer, or as near
-// and lower-numbered.
-bool nearer_or_first(double kept, int32_t kept_index, double dist, int32_t index) {
+// Whether the nearest so far (distance `kept`, primitive `kept_index`, -1 for none yet with
+// `kept` the search radius) stays against a primitive at `dist`: nearer, or as near and
+// lower-numbered, so that the order the hierarchies meet them in does not matter.
+bool stays(double kept, int32_t kept_index, double dist, int32_t index) {
+  if (kept_index < 0) return kept <= dist;
   return kept < dist || (kept == dist && kept_index <= index);
 }
 
@@ -129,7 +131,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     if (n.squaredNorm() == 0) return;
     const std::size_t at = static_cast<std::size_t>(i) * per_vertex + (n.dot(face_normal) >= 0 ? 0 : 1);
     auto& slot = vertex_pairs[at];
-    if (slot && nearer_or_first(slot->distance, slot_face[at], dist, f)) return;
+    if (stays(slot ? slot->distance : band, slot_face[at], dist, f)) return;
     slot_face[at] = f;
     ProximityPair pair;
     set_cloth(pair, 0, i, 1.0);
@@ -148,7 +150,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     const double dist = sep.norm();
     double& best = nearest_obstacle[static_cast<std::size_t>(i) * num_obstacles + o];
     int32_t& best_face = slot_face[static_cast<std::size_t>(i) * per_vertex + 2 + o];
-    if (best_face < 0 ? dist >= best : nearer_or_first(best, best_face, dist, f)) return;
+    if (stays(best, best_face, dist, f)) return;
     const Vec3 outward = face_outward(obstacles_[o], ox, f);
     if (outward.squaredNorm() == 0) return;
     best = dist;
@@ -187,7 +189,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
         const Vec3 sep = (w[0] * a + w[1] * b + w[2] * c) - p;
         const double dist = sep.norm();
         int32_t& best_face = nearest_cloth_face[o][iu];
-        if (best_face < 0 ? dist >= nearest_cloth[o][iu] : nearer_or_first(nearest_cloth[o][iu], best_face, dist, f)) return;
+        if (stays(nearest_cloth[o][iu], best_face, dist, f)) return;
         std::optional<Vec3>& outward = outwards[o][iu];
         if (!outward) outward = outward_around(obstacles_[o], obstacle_adjacency_[o].vertex, obstacle_x[o], i);
         if (outward->squaredNorm() == 0) return;
@@ -258,10 +260,9 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   for (const auto& list : obstacle_vertex_pairs)
     for (const auto& p : list)
       if (p) keep(*p);
-  std::vector<std::pair<EdgePairKey, ProximityPair>> by_key;
-  for (auto& list : edge_pairs) by_key.insert(by_key.end(), list.begin(), list.end());
-  std::sort(by_key.begin(), by_key.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (const auto& [key, p] : by_key) keep(p);
+  std::vector<std::pair<EdgePairKey, ProximityPair>> keyed;
+  for (auto& list : edge_pairs) keyed.insert(keyed.end(), list.begin(), list.end());
+  for (const ProximityPair& p : in_key_order(std::move(keyed))) keep(p);
   return pairs;
 }
 

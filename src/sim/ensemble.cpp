@@ -115,11 +115,16 @@ void Ensemble::restart_solvers() {
   for (auto& p : parts_) p->restart_solvers();
 }
 
+const Simulation& Ensemble::part(int group) const {
+  const auto at = std::find(here_.begin(), here_.end(), group);
+  if (at == here_.end()) throw std::logic_error("Ensemble::part: group " + std::to_string(group) + " is not here");
+  return *parts_[static_cast<std::size_t>(at - here_.begin())];
+}
+
 const Scene& Ensemble::group_scene(int group) const {
   const auto g = static_cast<std::size_t>(group);
   if (waiting_.at(g)) return *waiting_[g];
-  const auto k = std::find(here_.begin(), here_.end(), group) - here_.begin();
-  return parts_[static_cast<std::size_t>(k)]->scene();
+  return part(group).scene();
 }
 
 void Ensemble::drop(int group) {

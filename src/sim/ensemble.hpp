@@ -53,6 +53,7 @@ class Ensemble {
   // The parts stepped here, in group order; parts()[k] simulates group here()[k].
   const std::vector<std::unique_ptr<Simulation>>& parts() const { return parts_; }
   const std::vector<int>& here() const { return here_; }
+  const Simulation& part(int group) const;  // group's simulation (it must be here)
   int groups() const { return static_cast<int>(waiting_.size()); }  // of the whole scene
   const Scene& group_scene(int group) const;  // any group's, here or waiting
   const std::string& name() const { return name_; }
