@@ -297,6 +297,30 @@ TEST_F(CliTest, RenderVideoHoldsEveryPictureAtTheShotsSpeed) {
   EXPECT_FALSE(fs::exists(dir_ / "pictures"));
 }
 
+// The spin counts libgomp reports at start-up (OMP_DISPLAY_ENV), in order: one a program image.
+std::vector<std::string> spin_counts_reported(const std::string& environment) {
+  const std::string command = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT " + environment + " OMP_DISPLAY_ENV=verbose " +
+                              std::string(VDCLOTH_BINARY) + " --version 2>&1";
+  std::vector<std::string> counts;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (fgets(buffer, sizeof buffer, pipe) != nullptr) {
+      const std::string line = buffer, key = "GOMP_SPINCOUNT = '";
+      if (const auto at = line.find(key); at != std::string::npos) counts.push_back(line.substr(at + key.size(), line.find('\'', at + key.size()) - at - key.size()));
+    }
+    pclose(pipe);
+  }
+  return counts;
+}
+
+// Idle OpenMP threads sleep by default (the program starts itself again with the passive wait
+// policy, libgomp's spin count 0); a policy or spin count the environment sets is kept as it is.
+TEST_F(CliTest, IdleThreadsSleepUnlessTheEnvironmentChooses) {
+  EXPECT_EQ(spin_counts_reported(""), (std::vector<std::string>{"300000", "0"}));
+  EXPECT_EQ(spin_counts_reported("OMP_WAIT_POLICY=active"), (std::vector<std::string>{"30000000000"}));
+  EXPECT_EQ(spin_counts_reported("GOMP_SPINCOUNT=1000"), (std::vector<std::string>{"1000"}));
+}
+
 TEST_F(CliTest, RenderBadInputsExitTwoNamingTheProblem) {
   const std::string no_camera = scene();
   ASSERT_EQ(run({"run", no_camera, "--out", out_dir(), "--frames", "1", "--threads", "1"}), kExitOk) << err_.str();
