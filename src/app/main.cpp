@@ -10,7 +10,7 @@
 int main(int argc, char** argv) {
   // OpenMP threads with nothing to do sleep rather than spin, unless the environment chooses.
   // libgomp's default spins up to 300,000 rounds at every barrier and between parallel regions,
-  // and the factorization's team of one working thread (physics/linear_solver.cpp) keeps a
+  // and the factorization's team of one working thread (physics/cholmod_use.hpp) keeps a
   // second thread spinning through every factorization: free on an idle machine, but two runs
   // sharing two cores (two jobs, `--group` shares, ctest -j2) then go at half speed
   // (bench/RESULTS.md "Idle OpenMP threads"). libgomp reads its environment once, when it is

@@ -45,7 +45,18 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
   std::stable_sort(blocks_.begin(), blocks_.end(), [](const Block& p, const Block& q) { return p.size > q.size; });
   LinearSolverParams inner = params_;
   if (blocks_.size() > 1) inner.threads = 1;  // the blocks are the parallelism
-  for (Block& block : blocks_) {
+  std::vector<std::pair<Eigen::Index, std::pair<int, int>>> units;
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    Block& block = blocks_[k];
+    if (kind_ == LinearSolverKind::Cholmod && a.isCompressed() && block.size >= kMinSeparatedUnknowns) {
+      block.separated = std::make_unique<SeparatedCholesky>();
+      if (block.separated->analyze(a, block.start, block.size)) {
+        for (int h = 0; h < 2; ++h) units.push_back({block.separated->half_unknowns(h), {static_cast<int>(k), h}});
+        continue;
+      }
+      block.separated.reset();
+    }
+    units.push_back({block.size, {static_cast<int>(k), -1}});
     block.solver = make_linear_solver(kind_, inner);
     if (blocks_.size() > 1) {
       copy_pattern(a, block);
@@ -55,6 +66,13 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
       block.solver->analyze(a);
     }
   }
+  std::stable_sort(units.begin(), units.end(), [](const auto& p, const auto& q) { return p.first > q.first; });
+  units_.clear();
+  for (const auto& unit : units) units_.push_back(unit.second);
+}
+
+std::size_t BlockDiagonalSolver::separated_blocks() const {
+  return static_cast<std::size_t>(std::count_if(blocks_.begin(), blocks_.end(), [](const Block& b) { return b.separated != nullptr; }));
 }
 
 void BlockDiagonalSolver::copy_pattern(const SparseMatrix& a, Block& block) {
@@ -74,18 +92,32 @@ void BlockDiagonalSolver::copy_values(const SparseMatrix& a, Block& block) {
 }
 
 SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  if (blocks_.size() == 1) return blocks_.front().solver->solve(a, b, x);
-  // One active level: CHOLMOD's and BLAS's own teams inside each block's solve run on the
-  // block's thread (as in linear_solver.cpp's cholmod_serial).
+  if (blocks_.size() == 1 && blocks_.front().solver) return blocks_.front().solver->solve(a, b, x);
+  // One active level: CHOLMOD's and BLAS's own teams inside each unit run on the unit's thread
+  // (as in cholmod_use.hpp's cholmod_serial).
   omp_set_max_active_levels(1);
-  const auto n = static_cast<int>(blocks_.size());
+  const auto n = static_cast<int>(units_.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
-  for (int k = 0; k < n; ++k) {
+  for (int u = 0; u < n; ++u) {
+    const auto [k, half] = units_[static_cast<std::size_t>(u)];
     Block& block = blocks_[static_cast<std::size_t>(k)];
+    if (half >= 0) {
+      block.half_factored[static_cast<std::size_t>(half)] = block.separated->factor_half(a, half);
+      continue;
+    }
     copy_values(a, block);
     block.b = b.segment(block.start, block.size);
     block.x = x.segment(block.start, block.size);
     block.report = block.solver->solve(block.a, block.b, block.x);
+  }
+  // The separated blocks' joins: each separator's Schur complement and the substitutions.
+  const auto m = static_cast<int>(blocks_.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
+  for (int k = 0; k < m; ++k) {
+    Block& block = blocks_[static_cast<std::size_t>(k)];
+    if (!block.separated) continue;
+    block.b = b.segment(block.start, block.size);
+    block.report = block.half_factored[0] && block.half_factored[1] ? block.separated->solve(a, block.b, block.x) : SolveReport{};
   }
   SolveReport r;
   r.ok = true;
@@ -96,7 +128,7 @@ SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::Vecto
     r.factorizations = std::max(r.factorizations, block.report.factorizations);
     const double rb = block.report.residual * block.b.norm();
     residual2 += rb * rb;
-    x.segment(block.start, block.size) = block.x;
+    if (block.x.size() == block.size) x.segment(block.start, block.size) = block.x;
   }
   const double nb = b.norm();
   r.residual = nb > 0 ? std::sqrt(residual2) / nb : std::sqrt(residual2);

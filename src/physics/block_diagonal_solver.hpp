@@ -2,13 +2,17 @@
 // parallel threads. The garments of one character are such blocks: nothing in the implicit
 // system couples two of them (contacts between garments add only diagonal blocks,
 // SystemAssembler::add_contacts), so a layered outfit's factorizations, serial inside CHOLMOD,
-// can run side by side.
+// can run side by side. A block too large to leave to one thread (a garment of a few thousand
+// faces) is split in two across a vertex separator (SeparatedCholesky), its halves factored like
+// blocks of their own. What a solve finds does not depend on the thread count.
 #pragma once
+#include <array>
 #include <memory>
 #include <utility>
 #include <vector>
 
 #include "physics/linear_solver.hpp"
+#include "physics/separated_cholesky.hpp"
 
 namespace vdc {
 
@@ -30,11 +34,18 @@ class BlockDiagonalSolver final : public LinearSolver {
   // Blocks below this many unknowns (about 200 nodes) join a neighbour: each factorization has
   // a fixed cost, and small garments gain nothing from a thread of their own.
   static constexpr Eigen::Index kMinBlockUnknowns = 600;
+  // Blocks from this many unknowns (2,000 nodes, about 4,000 faces) are split across a
+  // separator when the solver is CHOLMOD's direct one.
+  static constexpr Eigen::Index kMinSeparatedUnknowns = 6000;
+  // How many blocks are solved in two halves (after analyze).
+  std::size_t separated_blocks() const;
 
  private:
   struct Block {
     Eigen::Index start = 0, size = 0;
-    std::unique_ptr<LinearSolver> solver;
+    std::unique_ptr<LinearSolver> solver;            // or, for a block split in two:
+    std::unique_ptr<SeparatedCholesky> separated;
+    std::array<bool, 2> half_factored{};
     SparseMatrix a;
     Eigen::VectorXd b, x;
     SolveReport report;
@@ -46,6 +57,9 @@ class BlockDiagonalSolver final : public LinearSolver {
   LinearSolverKind kind_;
   LinearSolverParams params_;
   std::vector<Block> blocks_;  // largest first, so the threads finish together
+  // Units of a solve's parallel work: (block, -1) a whole block's solve, (block, h) half h of a
+  // separated block's factorization; largest first.
+  std::vector<std::pair<int, int>> units_;
 };
 
 }  // namespace vdc

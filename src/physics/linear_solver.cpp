@@ -9,35 +9,11 @@
 
 #include <omp.h>
 
+#include "physics/cholmod_use.hpp"
+
 namespace vdc {
 
 namespace {
-
-// Runs f on the calling thread with CHOLMOD's own OpenMP loops and its BLAS calls made serial.
-// Debian's CHOLMOD (SuiteSparse 5.12) opens a fixed 4-thread team for small loops of every
-// supernode; on a 2-core machine the thread hand-offs cost more than the arithmetic (a 400
-// MFlop factorization took 120 ms idle and seconds under load). Called from inside an active
-// parallel region, with one active level allowed, those nested regions run on one thread.
-// (Not by allowing no active level around f instead: Debian's OpenBLAS, the OpenMP build, then
-// waits forever in sched_yield for a team member it never gets.)
-template <class F>
-void cholmod_serial(F&& f) {
-  omp_set_max_active_levels(1);
-#pragma omp parallel num_threads(2)
-  {
-#pragma omp master
-    f();
-  }
-}
-
-// METIS keeps its random generator in process-wide state (GKlib's), reseeded at the start of
-// every ordering: two simulations ordering at once (the parts of a crowd) draw from each other's
-// sequence and get orderings, and so rounding, that change from run to run. One ordering at a
-// time keeps every run reproducible. The lock guards that library state, so it is process-wide.
-std::mutex& metis_lock() {
-  static std::mutex lock;
-  return lock;
-}
 
 // CHOLMOD's supernodal Cholesky with a fill-reducing ordering computed on the matrix's 3x3
 // block graph: METIS nested dissection of the n nodes rather than the 3n unknowns, expanded to
@@ -60,23 +36,8 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
         if (it.row() % 3 == 0) rows.push_back(static_cast<int>(it.row() / 3));
       col_start[j + 1] = static_cast<int>(rows.size());
     }
-    cholmod_sparse g{};
-    g.nrow = g.ncol = n;
-    g.nzmax = rows.size();
-    g.p = col_start.data();
-    g.i = rows.data();
-    g.stype = 1;  // symmetric, upper part used
-    g.itype = CHOLMOD_INT;
-    g.xtype = CHOLMOD_PATTERN;
-    g.dtype = CHOLMOD_DOUBLE;
-    g.sorted = 1;
-    g.packed = 1;
     std::vector<int> node_perm(n), perm(3 * n);
-    int ordered = 0;
-    {
-      const std::lock_guard<std::mutex> one_at_a_time(metis_lock());
-      ordered = cholmod_metis(&g, nullptr, 0, 1, node_perm.data(), &cholmod());
-    }
+    const bool ordered = metis_node_order(col_start, rows, node_perm, cholmod());
     if (!ordered) {
       Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>::analyzePattern(a);
       return;
@@ -89,7 +50,7 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
     }
     cholmod().nmethods = 1;
     cholmod().method[0].ordering = CHOLMOD_GIVEN;
-    amalgamate_for(n);
+    amalgamate_for(n, cholmod());
     cholmod_sparse view = Eigen::viewAsCholmod(a.selfadjointView<Eigen::Lower>());
     m_cholmodFactor = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &cholmod());
     m_isInitialized = true;
@@ -98,22 +59,6 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
     m_factorizationIsOk = false;
   }
 
- private:
-  // Below 10,000 nodes (about 20,000 faces), supernodes amalgamated three times as far as
-  // CHOLMOD's defaults (nrelax 4/16/48 columns, zrelax 0.8/0.1/0.05): fewer, larger supernodes.
-  // CHOLMOD opens OpenMP regions for every supernode, each ending in a futex call that costs
-  // microseconds in a virtual machine; on cloth systems of 300 to 18,000 faces the
-  // factorization and solve take a sixth to a half less time despite the extra fill, while
-  // at 33,000 faces the fill costs more than it saves (bench/RESULTS.md, "Larger supernodes").
-  void amalgamate_for(std::size_t nodes) {
-    const bool small = nodes < 10000;
-    const std::array<std::size_t, 3> nrelax = small ? std::array<std::size_t, 3>{12, 48, 144} : std::array<std::size_t, 3>{4, 16, 48};
-    const std::array<double, 3> zrelax = small ? std::array<double, 3>{1.05, 0.25, 0.125} : std::array<double, 3>{0.8, 0.1, 0.05};
-    for (std::size_t k = 0; k < 3; ++k) {
-      cholmod().nrelax[k] = nrelax[k];
-      cholmod().zrelax[k] = zrelax[k];
-    }
-  }
 };
 
 double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {

@@ -1,0 +1,60 @@
+// How the solvers call CHOLMOD: its OpenMP loops and BLAS calls kept on the calling thread,
+// METIS's orderings one at a time, nodes (3x3 blocks) ordered rather than unknowns, and larger
+// supernodes for cloth-sized systems.
+#pragma once
+#include <cstddef>
+#include <mutex>
+#include <vector>
+
+#include <cholmod.h>
+#include <omp.h>
+
+namespace vdc {
+
+// Runs f on the calling thread with CHOLMOD's own OpenMP loops and its BLAS calls made serial.
+// Debian's CHOLMOD (SuiteSparse 5.12) opens a fixed 4-thread team for small loops of every
+// supernode; on a 2-core machine the thread hand-offs cost more than the arithmetic (a 400
+// MFlop factorization took 120 ms idle and seconds under load). Called from inside an active
+// parallel region, with one active level allowed, those nested regions run on one thread.
+// (Not by allowing no active level around f instead: Debian's OpenBLAS, the OpenMP build, then
+// waits forever in sched_yield for a team member it never gets.)
+template <class F>
+void cholmod_serial(F&& f) {
+  omp_set_max_active_levels(1);
+  if (omp_get_active_level() > 0) {
+    f();
+    return;
+  }
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp master
+    f();
+  }
+}
+
+// METIS keeps its random generator in process-wide state (GKlib's), reseeded at the start of
+// every ordering: two simulations ordering at once (the parts of a crowd) draw from each other's
+// sequence and get orderings, and so rounding, that change from run to run. One ordering at a
+// time keeps every run reproducible. The lock guards that library state, so it is process-wide.
+inline std::mutex& metis_lock() {
+  static std::mutex lock;
+  return lock;
+}
+
+// A view of a node graph (columns' rows in `col_start` / `rows`, both triangles) as a CHOLMOD
+// symmetric pattern; the vectors must outlive it.
+cholmod_sparse node_graph_view(std::vector<int>& col_start, std::vector<int>& rows);
+
+// METIS nested dissection of a node graph (columns' rows in `col_start` / `rows`, both
+// triangles), under metis_lock: node_perm[k] is the k-th node eliminated. False if METIS fails.
+bool metis_node_order(std::vector<int>& col_start, std::vector<int>& rows, std::vector<int>& node_perm, cholmod_common& common);
+
+// Below 10,000 nodes (about 20,000 faces), supernodes amalgamated three times as far as
+// CHOLMOD's defaults (nrelax 4/16/48 columns, zrelax 0.8/0.1/0.05): fewer, larger supernodes.
+// CHOLMOD opens OpenMP regions for every supernode, each ending in a futex call that costs
+// microseconds in a virtual machine; on cloth systems of 300 to 18,000 faces the
+// factorization and solve take a sixth to a half less time despite the extra fill, while
+// at 33,000 faces the fill costs more than it saves (bench/RESULTS.md, "Larger supernodes").
+void amalgamate_for(std::size_t nodes, cholmod_common& common);
+
+}  // namespace vdc
