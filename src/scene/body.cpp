@@ -125,11 +125,11 @@ Pose Body::rest_pose(const Skeleton& s) {
   return p;
 }
 
-Body::Body(const Motion& motion, const BodyParams& params) : Body(motion, params, nullptr) {}
+Body::Body(const Motion& motion, const BodyParams& params, BodyMeshCache* cache) : Body(motion, params, nullptr, cache) {}
 
-Body::Body(const Motion& motion, const BodyParams& params, MeshSource skin) : Body(motion, params, &skin) {}
+Body::Body(const Motion& motion, const BodyParams& params, MeshSource skin) : Body(motion, params, &skin, nullptr) {}
 
-Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin) : motion_(motion) {
+Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin, BodyMeshCache* cache) : motion_(motion) {
   const auto& joints = motion.skeleton.joints;
   const std::vector<Eigen::Isometry3d> rest = motion.world(rest_pose(motion.skeleton));
   const std::vector<Bone> bones = bones_in(motion.skeleton, rest, params.build);
@@ -145,7 +145,12 @@ Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin) : m
   if (skin) {
     rest_ = std::move(*skin);
   } else {
-    rest_ = polygonize(field, box, params.resolution);
+    // Everything the polygonization depends on.
+    std::vector<double> key{params.resolution, params.blend, box.lo.x(), box.lo.y(), box.lo.z(), box.hi.x(), box.hi.y(), box.hi.z()};
+    for (const Bone& b : bones) key.insert(key.end(), {b.a.x(), b.a.y(), b.a.z(), b.b.x(), b.b.y(), b.b.z(), b.ra, b.rb});
+    const MeshSource* made = cache ? cache->find(key) : nullptr;
+    rest_ = made ? *made : polygonize(field, box, params.resolution);
+    if (cache && !made) cache->add(std::move(key), rest_);
   }
   with_canonical_uvs(rest_);
 

@@ -3,6 +3,7 @@
 // minimum so the joints are smooth, polygonized once), skinned to the skeleton by linear blend
 // skinning. Collisions treat it as one obstacle whose vertices move with the skin.
 #pragma once
+#include <map>
 #include <vector>
 
 #include "core/mesh_build.hpp"
@@ -26,11 +27,28 @@ inline constexpr double kSlimmestBuild = 0.6;
 // project's figure, and no cloth could lie between. 1 for a skeleton without arms.
 double build_clearing_arms(const Motion& motion, const std::vector<Pose>& poses, double clearance);
 
+// Procedural rest meshes already polygonized, by the capsules and parameters they were made
+// from (compared exactly): the copies of a crowd share one figure, and polygonizing it is most
+// of a character's loading (about 50 ms at 3.5 cm).
+class BodyMeshCache {
+ public:
+  const MeshSource* find(const std::vector<double>& key) const {
+    const auto it = meshes_.find(key);
+    return it == meshes_.end() ? nullptr : &it->second;
+  }
+  void add(std::vector<double> key, MeshSource mesh) { meshes_.emplace(std::move(key), std::move(mesh)); }
+  std::size_t size() const { return meshes_.size(); }
+
+ private:
+  std::map<std::vector<double>, MeshSource> meshes_;
+};
+
 class Body {
  public:
   // The procedural body of the motion's skeleton in its rest pose (all rotations zero, offsets
-  // as given); lengths in metres.
-  Body(const Motion& motion, const BodyParams& params);
+  // as given); lengths in metres. With `cache`, a figure polygonized before is taken from it
+  // (the same mesh, bit for bit) and a new one added to it.
+  Body(const Motion& motion, const BodyParams& params, BodyMeshCache* cache = nullptr);
   // A given skin (a mesh of the figure in the skeleton's rest pose, same units) skinned to the
   // skeleton with the same automatic weights; params.build and params.blend shape the weights.
   Body(const Motion& motion, const BodyParams& params, MeshSource skin);
@@ -49,7 +67,7 @@ class Body {
     Vec3 local;       // the vertex in that joint's rest frame
     Vec3 rest_world;  // that joint's rest transform applied to `local`
   };
-  Body(const Motion& motion, const BodyParams& params, MeshSource* skin);
+  Body(const Motion& motion, const BodyParams& params, MeshSource* skin, BodyMeshCache* cache);
   const Motion& motion_;
   MeshSource rest_;
   std::vector<std::vector<Influence>> influences_;  // per vertex

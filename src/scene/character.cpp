@@ -7,9 +7,9 @@
 namespace vdc {
 
 Character::Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed,
-                     std::optional<MeshSource> skin, Dressing dressing)
+                     std::optional<MeshSource> skin, Dressing dressing, BodyMeshCache* bodies)
     : motion_(std::make_unique<Motion>(std::move(motion))), placement_(placement), body_params_(body), preroll_(dressing.preroll) {
-  body_ = skin ? std::make_unique<Body>(*motion_, body, std::move(*skin)) : std::make_unique<Body>(*motion_, body);
+  body_ = skin ? std::make_unique<Body>(*motion_, body, std::move(*skin)) : std::make_unique<Body>(*motion_, body, bodies);
   clip_ = MotionClip{motion_.get(), start, speed};
   dressing_ = dressing.pose ? *dressing.pose : Body::rest_pose(motion_->skeleton);
   Aabb box;

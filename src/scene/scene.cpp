@@ -318,14 +318,14 @@ const ObstacleSpec* garment_wearer(const JsonValue& j, const GarmentSpec& g, con
 std::string missing_joint(const Skeleton& skeleton, const std::string& joint);
 
 // The project's figure as garments are sized for, with a body made as `body` makes the wearer's
-// (so the two are measured alike).
-FigureMeasure reference_figure(const BodyParams& body) {
+// (so the two are measured alike); `bodies` keeps its polygonized body for the next wearer.
+FigureMeasure reference_figure(const BodyParams& body, BodyMeshCache& bodies) {
   Motion figure;
   figure.skeleton = figure_skeleton();
   figure.frames.assign(1, std::vector<double>(static_cast<std::size_t>(figure.skeleton.num_channels), 0.0));
   BodyParams as_made = body;
   as_made.build = 1.0;
-  const Body made(figure, as_made);
+  const Body made(figure, as_made, &bodies);
   const Pose rest = Body::rest_pose(figure.skeleton);
   return measure_figure(figure, rest, made.rest_mesh(), made.skin(rest), made.main_joints());
 }
@@ -335,12 +335,12 @@ FigureMeasure reference_figure(const BodyParams& body) {
 // `start_time` and `shot` bound the run's time: the arms' reach is taken over it.
 void fit_garments(const std::vector<JsonValue>& entries, std::vector<GarmentSpec>& garments, const std::vector<GarmentMaking>& making,
                   const std::vector<std::size_t>& worn, const Character& wearer, const std::string& wearer_name, double start_time,
-                  double shot) {
+                  double shot, BodyMeshCache& bodies) {
   const Pose& pose = wearer.dressing_pose();
   const JsonValue& first = entries[worn.front()];
   std::optional<GarmentFit> fit;
   std::optional<FigureMeasure> figure;
-  const FigureMeasure reference = reference_figure(wearer.body_params());
+  const FigureMeasure reference = reference_figure(wearer.body_params(), bodies);
   try {
     figure = measure_figure(wearer.motion(), pose, wearer.rest_mesh(), wearer.skinned(pose), wearer.main_joints());
     fit.emplace(reference, *figure);
@@ -418,7 +418,7 @@ std::string missing_joint(const Skeleton& skeleton, const std::string& joint) {
 }
 
 // `shot` is the scene's length (s): a character's build looks at the poses it takes in the shot.
-ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time, double shot) {
+ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time, double shot, BodyMeshCache& bodies) {
   j.only_keys({"name", "group", "mesh", "character", "transform", "motion"});
   ObstacleSpec o;
   o.name = j.at("name").string();
@@ -501,7 +501,8 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
       body.build = build_clearing_arms(motion, poses, kArmClearance);
     }
     const Transform placement = j.has("transform") ? parse_transform(j.at("transform")) : Transform{};
-    o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed, std::move(skin), std::move(dressing));
+    o.character = std::make_shared<const Character>(std::move(motion), body, placement, start, speed, std::move(skin), std::move(dressing),
+                                                     &bodies);
     o.mesh = build_mesh(o.character->rest_mesh());
     const std::vector<Vec3> x0 = o.character->positions_at(0.0);
     for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x0[static_cast<std::size_t>(n.idx)];
@@ -724,8 +725,9 @@ Scene load_scene(const std::string& path) {
   }
   if (s.garments.empty())
     (j.has("garments") ? j.at("garments") : j).fail("a scene needs at least one garment: \"garments\" lists none and no crowd makes one");
+  BodyMeshCache bodies;  // a crowd's copies share their figure's body
   for (const JsonValue& o : entries.obstacles) {
-    s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time));
+    s.obstacles.push_back(parse_obstacle(o, path, s.frame_time, s.frames * s.frame_time, bodies));
     check_name(o.at("name"), s.obstacles.back().name, names);
   }
   // The run starts before the shot by the longest pre-roll, characters in their dressing poses,
@@ -748,7 +750,8 @@ Scene load_scene(const std::string& path) {
       it->second.push_back(gi);
     }
   for (const auto& [wearer, garments] : worn)
-    fit_garments(entries.garments, s.garments, making, garments, *wearer->character, wearer->name, s.start_time(), s.frames * s.frame_time);
+    fit_garments(entries.garments, s.garments, making, garments, *wearer->character, wearer->name, s.start_time(), s.frames * s.frame_time,
+                 bodies);
   // Handles attached to a character's joint, now that the obstacles are known.
   for (std::size_t gi = 0; gi < s.garments.size(); ++gi) {
     const JsonValue& garment = entries.garments[gi];

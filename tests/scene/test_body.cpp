@@ -6,6 +6,7 @@
 #include "core/isosurface.hpp"
 #include "scene/bvh_motion.hpp"
 #include "scene/body.hpp"
+#include "scene/figure.hpp"
 
 namespace vdc {
 namespace {
@@ -46,6 +47,29 @@ TEST(Body, ClosedOutwardAndSkinnedExactlyAtRest) {
       EXPECT_LT(v, 1.2 * v0) << file << " frame " << f;
     }
   }
+}
+
+// A figure polygonized once serves every body made from the same capsules: the second body
+// takes the first's mesh (bit for bit what polygonizing gives), a slimmer build makes its own.
+TEST(Body, ACacheGivesTheSameFigureItsMeshAgain) {
+  Motion figure;
+  figure.skeleton = figure_skeleton();
+  figure.frames.assign(1, std::vector<double>(static_cast<std::size_t>(figure.skeleton.num_channels), 0.0));
+  BodyParams params;
+  params.resolution = 0.05;
+  const Body alone(figure, params);
+  BodyMeshCache cache;
+  const Body first(figure, params, &cache);
+  EXPECT_EQ(cache.size(), 1u);
+  const Body second(figure, params, &cache);
+  EXPECT_EQ(cache.size(), 1u);
+  EXPECT_EQ(second.rest_mesh().positions, alone.rest_mesh().positions);
+  EXPECT_EQ(second.rest_mesh().faces, alone.rest_mesh().faces);
+  EXPECT_EQ(second.skin(Body::rest_pose(figure.skeleton)), alone.skin(Body::rest_pose(figure.skeleton)));
+  params.build = 0.8;
+  const Body slimmer(figure, params, &cache);
+  EXPECT_EQ(cache.size(), 2u);
+  EXPECT_NE(slimmer.rest_mesh().positions, alone.rest_mesh().positions);
 }
 
 }  // namespace
