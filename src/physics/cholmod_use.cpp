@@ -5,6 +5,21 @@
 
 namespace vdc {
 
+void node_graph(const Eigen::SparseMatrix<double>& a, Eigen::Index start, Eigen::Index size, std::vector<int>& col_start,
+                std::vector<int>& rows) {
+  const auto n = static_cast<std::size_t>(size / 3);
+  const auto* outer = a.outerIndexPtr();
+  const auto* inner = a.innerIndexPtr();
+  col_start.assign(n + 1, 0);
+  rows.clear();
+  for (std::size_t j = 0; j < n; ++j) {
+    const Eigen::Index column = start + 3 * static_cast<Eigen::Index>(j);
+    for (auto k = outer[column]; k < (a.isCompressed() ? outer[column + 1] : outer[column] + a.innerNonZeroPtr()[column]); ++k)
+      if ((inner[k] - start) % 3 == 0) rows.push_back(static_cast<int>((inner[k] - start) / 3));
+    col_start[j + 1] = static_cast<int>(rows.size());
+  }
+}
+
 cholmod_sparse node_graph_view(std::vector<int>& col_start, std::vector<int>& rows) {
   const std::size_t n = col_start.size() - 1;
   cholmod_sparse g{};

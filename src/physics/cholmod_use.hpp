@@ -6,6 +6,7 @@
 #include <mutex>
 #include <vector>
 
+#include <Eigen/Sparse>
 #include <cholmod.h>
 #include <omp.h>
 
@@ -40,6 +41,12 @@ inline std::mutex& metis_lock() {
   static std::mutex lock;
   return lock;
 }
+
+// The node graph of a system's unknowns [start, start + size) (3 a node, nothing outside the
+// range coupled to them), from each node's first column (the pattern is blockwise): node j's
+// neighbours are rows[col_start[j] .. col_start[j + 1]), itself included.
+void node_graph(const Eigen::SparseMatrix<double>& a, Eigen::Index start, Eigen::Index size, std::vector<int>& col_start,
+                std::vector<int>& rows);
 
 // A view of a node graph (columns' rows in `col_start` / `rows`, both triangles) as a CHOLMOD
 // symmetric pattern; the vectors must outlive it.

@@ -29,13 +29,8 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
       Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>::analyzePattern(a);
       return;
     }
-    // Node graph from the first column of each block column (the pattern is blockwise).
-    std::vector<int> col_start(n + 1, 0), rows;
-    for (std::size_t j = 0; j < n; ++j) {
-      for (SparseMatrix::InnerIterator it(a, static_cast<Eigen::Index>(3 * j)); it; ++it)
-        if (it.row() % 3 == 0) rows.push_back(static_cast<int>(it.row() / 3));
-      col_start[j + 1] = static_cast<int>(rows.size());
-    }
+    std::vector<int> col_start, rows;
+    node_graph(a, 0, a.rows(), col_start, rows);
     std::vector<int> node_perm(n), perm(3 * n);
     const bool ordered = metis_node_order(col_start, rows, node_perm, cholmod());
     if (!ordered) {

@@ -60,13 +60,8 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
   const auto n = static_cast<std::size_t>(size / 3);
   const auto* outer = a.outerIndexPtr();
   const auto* inner = a.innerIndexPtr();
-  // The node graph from each node's first column (the pattern is blockwise).
-  std::vector<int> col_start(n + 1, 0), rows;
-  for (std::size_t j = 0; j < n; ++j) {
-    for (auto k = outer[start + 3 * static_cast<Eigen::Index>(j)]; k < outer[start + 3 * static_cast<Eigen::Index>(j) + 1]; ++k)
-      if ((inner[k] - start) % 3 == 0) rows.push_back(static_cast<int>((inner[k] - start) / 3));
-    col_start[j + 1] = static_cast<int>(rows.size());
-  }
+  std::vector<int> col_start, rows;
+  node_graph(a, start, size, col_start, rows);
   std::vector<int> part(n, 0);
   {
     cholmod_sparse g = node_graph_view(col_start, rows);
