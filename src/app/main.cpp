@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 
 #include "app/cli.hpp"
@@ -16,8 +17,12 @@ int main(int argc, char** argv) {
   // (bench/RESULTS.md "Idle OpenMP threads"). libgomp reads its environment once, when it is
   // loaded (before main; the C library's start-up also resets the environment after any
   // pre-initialisation), so the program starts itself again with the policy set. If that
-  // fails it goes on as it is.
-  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr &&
+  // fails it goes on as it is; so it does under valgrind (its preloaded libraries in
+  // LD_PRELOAD), where /proc/self/exe is valgrind's tool and starting it again would leave
+  // valgrind.
+  const char* preload = std::getenv("LD_PRELOAD");
+  const bool under_valgrind = preload != nullptr && std::strstr(preload, "vgpreload") != nullptr;
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr && std::getenv("GOMP_SPINCOUNT") == nullptr && !under_valgrind &&
       setenv("OMP_WAIT_POLICY", "passive", 0) == 0)
     execv("/proc/self/exe", argv);
   // Freed memory stays with the process: a run rebuilds its systems and hierarchies every frame

@@ -314,11 +314,14 @@ std::vector<std::string> spin_counts_reported(const std::string& environment) {
 }
 
 // Idle OpenMP threads sleep by default (the program starts itself again with the passive wait
-// policy, libgomp's spin count 0); a policy or spin count the environment sets is kept as it is.
+// policy, libgomp's spin count 0); a policy or spin count the environment sets is kept as it is,
+// and a run under valgrind is not started again.
 TEST_F(CliTest, IdleThreadsSleepUnlessTheEnvironmentChooses) {
   EXPECT_EQ(spin_counts_reported(""), (std::vector<std::string>{"300000", "0"}));
   EXPECT_EQ(spin_counts_reported("OMP_WAIT_POLICY=active"), (std::vector<std::string>{"30000000000"}));
   EXPECT_EQ(spin_counts_reported("GOMP_SPINCOUNT=1000"), (std::vector<std::string>{"1000"}));
+  // Under valgrind (seen by its preloaded library) /proc/self/exe is valgrind's tool: no restart.
+  EXPECT_EQ(spin_counts_reported("LD_PRELOAD=/nowhere/vgpreload_core-amd64-linux.so"), (std::vector<std::string>{"300000"}));
 }
 
 TEST_F(CliTest, RenderBadInputsExitTwoNamingTheProblem) {
