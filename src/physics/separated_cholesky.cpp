@@ -21,6 +21,10 @@ struct SeparatedCholesky::Half {
   Eigen::MatrixXd separator_product;   // L_hS L_hS^T
 
   Half() { cholmod_start(&common); }
+  // Half h (0 or 1) of `part`'s split of the range's nodes (graph col_start / rows): its
+  // unknowns ordered, M_h's pattern taken from `a`, CHOLMOD's analysis in that order.
+  bool analyze(const SparseMatrix& a, Eigen::Index start, int h, const std::vector<int>& part, const std::vector<int>& col_start,
+               const std::vector<int>& rows, const std::vector<Eigen::Index>& separator);
   ~Half() {
     if (factor != nullptr) cholmod_free_factor(&factor, &common);
     cholmod_finish(&common);
@@ -43,6 +47,65 @@ struct SeparatedCholesky::Half {
   }
 };
 
+bool SeparatedCholesky::Half::analyze(const SparseMatrix& a, Eigen::Index start, int h, const std::vector<int>& part,
+                                      const std::vector<int>& col_start, const std::vector<int>& rows,
+                                      const std::vector<Eigen::Index>& separator) {
+  const std::size_t n = part.size();
+  // The interior's own nested dissection, then the separator last.
+  std::vector<int> local(n, -1), nodes;
+  for (std::size_t j = 0; j < n; ++j)
+    if (part[j] == h) {
+      local[j] = static_cast<int>(nodes.size());
+      nodes.push_back(static_cast<int>(j));
+    }
+  std::vector<int> sub_start(nodes.size() + 1, 0), sub_rows, order;
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    for (int q = col_start[static_cast<std::size_t>(nodes[k])]; q < col_start[static_cast<std::size_t>(nodes[k]) + 1]; ++q)
+      if (local[static_cast<std::size_t>(rows[static_cast<std::size_t>(q)])] >= 0)
+        sub_rows.push_back(local[static_cast<std::size_t>(rows[static_cast<std::size_t>(q)])]);
+    sub_start[k + 1] = static_cast<int>(sub_rows.size());
+  }
+  if (!metis_node_order(sub_start, sub_rows, order, common)) return false;
+  unknown.clear();
+  for (const int k : order)
+    for (int r = 0; r < 3; ++r) unknown.push_back(3 * static_cast<Eigen::Index>(nodes[static_cast<std::size_t>(k)]) + r);
+  interior = static_cast<Eigen::Index>(unknown.size());
+  unknown.insert(unknown.end(), separator.begin(), separator.end());
+  // M_h's lower triangle, each entry holding (exactly, as a double) its index in a's values.
+  const auto* outer = a.outerIndexPtr();
+  const auto* inner = a.innerIndexPtr();
+  std::vector<Eigen::Index> position(3 * n, -1);
+  for (std::size_t i = 0; i < unknown.size(); ++i) position[static_cast<std::size_t>(unknown[i])] = static_cast<Eigen::Index>(i);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (std::size_t c = 0; c < unknown.size(); ++c) {
+    const Eigen::Index column = start + unknown[c];
+    for (auto k = outer[column]; k < outer[column + 1]; ++k) {
+      const Eigen::Index r = position[static_cast<std::size_t>(inner[k] - start)];
+      if (r >= static_cast<Eigen::Index>(c)) entries.emplace_back(static_cast<int>(r), static_cast<int>(c), static_cast<double>(k));
+    }
+  }
+  const auto size = static_cast<Eigen::Index>(unknown.size());
+  m.resize(size, size);
+  m.setFromTriplets(entries.begin(), entries.end());
+  m.makeCompressed();
+  source.resize(static_cast<std::size_t>(m.nonZeros()));
+  for (Eigen::Index i = 0; i < m.nonZeros(); ++i) source[static_cast<std::size_t>(i)] = static_cast<Eigen::Index>(m.valuePtr()[i]);
+  // Analyzed in the order given: supernodal, no fill-reducing permutation, no postorder (the
+  // separator must stay last).
+  common.nmethods = 1;
+  common.method[0].ordering = CHOLMOD_NATURAL;
+  common.postorder = 0;
+  common.supernodal = CHOLMOD_SUPERNODAL;
+  amalgamate_for(static_cast<std::size_t>(size / 3), common);
+  cholmod_sparse v = view();
+  cholmod_serial([&] { factor = cholmod_analyze(&v, &common); });
+  if (factor == nullptr || !factor->is_super) return false;
+  const int* perm = static_cast<const int*>(factor->Perm);
+  for (Eigen::Index i = 0; i < size; ++i)
+    if (perm[i] != i) return false;
+  return true;
+}
+
 SeparatedCholesky::SeparatedCholesky() = default;
 SeparatedCholesky::~SeparatedCholesky() = default;
 
@@ -58,8 +121,6 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
   for (auto& h : halves_) h = std::make_unique<Half>();
   if (size % 3 != 0 || size == 0 || !a.isCompressed()) return false;
   const auto n = static_cast<std::size_t>(size / 3);
-  const auto* outer = a.outerIndexPtr();
-  const auto* inner = a.innerIndexPtr();
   std::vector<int> col_start, rows;
   node_graph(a, start, size, col_start, rows);
   std::vector<int> part(n, 0);
@@ -82,64 +143,13 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
   for (std::size_t j = 0; j < n; ++j)
     if (part[j] == 2)
       for (int r = 0; r < 3; ++r) separator_.push_back(3 * static_cast<Eigen::Index>(j) + r);
-  for (int h = 0; h < 2; ++h) {
-    Half& half = *halves_[static_cast<std::size_t>(h)];
-    // The interior's own nested dissection, then the separator last.
-    std::vector<int> local(n, -1), nodes;
-    for (std::size_t j = 0; j < n; ++j)
-      if (part[j] == h) {
-        local[j] = static_cast<int>(nodes.size());
-        nodes.push_back(static_cast<int>(j));
-      }
-    std::vector<int> sub_start(nodes.size() + 1, 0), sub_rows, order;
-    for (std::size_t k = 0; k < nodes.size(); ++k) {
-      for (int q = col_start[static_cast<std::size_t>(nodes[k])]; q < col_start[static_cast<std::size_t>(nodes[k]) + 1]; ++q)
-        if (local[static_cast<std::size_t>(rows[static_cast<std::size_t>(q)])] >= 0)
-          sub_rows.push_back(local[static_cast<std::size_t>(rows[static_cast<std::size_t>(q)])]);
-      sub_start[k + 1] = static_cast<int>(sub_rows.size());
-    }
-    if (!metis_node_order(sub_start, sub_rows, order, half.common)) return false;
-    half.unknown.clear();
-    for (const int k : order)
-      for (int r = 0; r < 3; ++r) half.unknown.push_back(3 * static_cast<Eigen::Index>(nodes[static_cast<std::size_t>(k)]) + r);
-    half.interior = static_cast<Eigen::Index>(half.unknown.size());
-    half.unknown.insert(half.unknown.end(), separator_.begin(), separator_.end());
-    // M_h's lower triangle, each entry holding (exactly, as a double) its index in a's values.
-    std::vector<Eigen::Index> position(static_cast<std::size_t>(size), -1);
-    for (std::size_t i = 0; i < half.unknown.size(); ++i) position[static_cast<std::size_t>(half.unknown[i])] = static_cast<Eigen::Index>(i);
-    std::vector<Eigen::Triplet<double>> entries;
-    for (std::size_t c = 0; c < half.unknown.size(); ++c) {
-      const Eigen::Index column = start + half.unknown[c];
-      for (auto k = outer[column]; k < outer[column + 1]; ++k) {
-        const Eigen::Index r = position[static_cast<std::size_t>(inner[k] - start)];
-        if (r >= static_cast<Eigen::Index>(c)) entries.emplace_back(static_cast<int>(r), static_cast<int>(c), static_cast<double>(k));
-      }
-    }
-    const auto m = static_cast<Eigen::Index>(half.unknown.size());
-    half.m.resize(m, m);
-    half.m.setFromTriplets(entries.begin(), entries.end());
-    half.m.makeCompressed();
-    half.source.resize(static_cast<std::size_t>(half.m.nonZeros()));
-    for (Eigen::Index i = 0; i < half.m.nonZeros(); ++i) half.source[static_cast<std::size_t>(i)] = static_cast<Eigen::Index>(half.m.valuePtr()[i]);
-    if (h == 0)
-      for (Eigen::Index c = half.interior; c < m; ++c)
-        for (auto k = half.m.outerIndexPtr()[c]; k < half.m.outerIndexPtr()[c + 1]; ++k)
-          separator_entries_.push_back({static_cast<int>(half.m.innerIndexPtr()[k] - half.interior), static_cast<int>(c - half.interior),
-                                        half.source[static_cast<std::size_t>(k)]});
-    // Analyzed in the order given: supernodal, no fill-reducing permutation, no postorder (the
-    // separator must stay last).
-    half.common.nmethods = 1;
-    half.common.method[0].ordering = CHOLMOD_NATURAL;
-    half.common.postorder = 0;
-    half.common.supernodal = CHOLMOD_SUPERNODAL;
-    amalgamate_for(static_cast<std::size_t>(m / 3), half.common);
-    cholmod_sparse view = half.view();
-    cholmod_serial([&] { half.factor = cholmod_analyze(&view, &half.common); });
-    if (half.factor == nullptr || !half.factor->is_super) return false;
-    const int* perm = static_cast<const int*>(half.factor->Perm);
-    for (Eigen::Index i = 0; i < m; ++i)
-      if (perm[i] != i) return false;
-  }
+  for (int h = 0; h < 2; ++h)
+    if (!halves_[static_cast<std::size_t>(h)]->analyze(a, start, h, part, col_start, rows, separator_)) return false;
+  const Half& first = *halves_[0];
+  for (Eigen::Index c = first.interior; c < first.m.cols(); ++c)
+    for (auto k = first.m.outerIndexPtr()[c]; k < first.m.outerIndexPtr()[c + 1]; ++k)
+      separator_entries_.push_back({static_cast<int>(first.m.innerIndexPtr()[k] - first.interior), static_cast<int>(c - first.interior),
+                                    first.source[static_cast<std::size_t>(k)]});
   return true;
 }
 
