@@ -28,12 +28,28 @@ inline constexpr const char* kRestAngleAttr = "rest_angle";
 // warp and weft compression); absent means 1, the plain material.
 inline constexpr const char* kCompressionAttr = "compression";
 
-// Appends a compact mesh's elements; its node i becomes model node offset + i. Returns the offset.
-int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& material);
+// Name of the optional face attribute (Vec2) holding the warp and weft strain a coarse face was
+// made with (membrane.hpp's `gathered`), and of the one (double) holding the material area it
+// was recorded on: a face the remesher made since covers other material (a split or a collapse)
+// and records its own; a flip that keeps the area covers the same cloth and keeps the record.
+inline constexpr const char* kGatheredAttr = "gathered";
+inline constexpr const char* kGatheredAreaAttr = "gathered_area";
 
-// Sets the membranes' compression factors of the garment whose faces start at model face
-// `first_face` from its mesh's kCompressionAttr (1 where absent), without rebuilding anything.
-void update_compression(ClothModel& model, const Mesh& mesh, std::size_t first_face);
+// Appends a compact mesh's elements; its node i becomes model node offset + i. Returns the offset.
+// With `gathering` > 0 its membranes resist gathering beyond the mesh's kGatheredAttr with that
+// factor (membrane.hpp).
+int32_t append_garment(ClothModel& model, const Mesh& mesh, const Material& material, double gathering = 0);
+
+// Sets the membranes' compression factors (and, with `gathering` > 0, their gathered strains) of
+// the garment whose faces start at model face `first_face` from its mesh's kCompressionAttr (1
+// where absent) and kGatheredAttr, without rebuilding anything.
+void update_compression(ClothModel& model, const Mesh& mesh, std::size_t first_face, double gathering = 0);
+
+// Records kGatheredAttr on every face whose compression factor is below 1 and that has none for
+// its material area yet (coarsened, split or collapsed since the last call): its compressive
+// warp and weft Green strain now (0 where stretched). A face at factor 1 forgets it. Faces that
+// keep their material keep what they were made with.
+void record_gathering(Mesh& mesh);
 
 // Sets the edge attribute kRestAngleAttr to the current dihedral angles (a garment whose rest
 // shape is its initial world shape).

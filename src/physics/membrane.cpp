@@ -88,21 +88,29 @@ Mat2 membrane_stress(const Mat2& e, const MembraneStiffness& k) {
 
 namespace {
 
-// The strain psi sees: compressive warp and weft strains scaled by the element's `compression`
-// (piecewise linear, so within each piece psi is the plain energy of the scaled strain), with
-// the slopes of that scaling on E11 and E22.
+// The strain psi sees: compressive warp and weft strains scaled by the element's `compression`,
+// and beyond its `gathered` strain by `gathering` (piecewise linear and continuous, so within
+// each piece psi is the plain energy of the scaled strain), with the slopes of that scaling on
+// E11 and E22.
 struct SeenStrain {
   Mat2 e;
   Vec2 slope;
 };
 
-SeenStrain seen_strain(const Mat2& e, double compression) {
+SeenStrain seen_strain(const Mat2& e, const MembraneElement& m) {
   SeenStrain s{e, Vec2(1, 1)};
-  for (int i = 0; i < 2; ++i)
-    if (e(i, i) < 0 && compression < 1) {
-      s.e(i, i) = compression * e(i, i);
-      s.slope[i] = compression;
+  if (!(m.compression < 1)) return s;
+  for (int i = 0; i < 2; ++i) {
+    const double strain = e(i, i);
+    if (!(strain < 0)) continue;
+    if (m.gathering > 0 && strain < m.gathered[i]) {
+      s.e(i, i) = m.compression * m.gathered[i] + m.gathering * (strain - m.gathered[i]);
+      s.slope[i] = m.gathering;
+    } else {
+      s.e(i, i) = m.compression * strain;
+      s.slope[i] = m.compression;
     }
+  }
   return s;
 }
 
@@ -136,29 +144,29 @@ VecN<9> nodal_gradient(const Mat32& f, const Mat2& s, const MembraneElement& m) 
 }  // namespace
 
 double membrane_energy(const TriStencil& x, const MembraneElement& m) {
-  return m.area * energy_density(seen_strain(green_strain(deformation_gradient(x, m)), m.compression).e, m.k);
+  return m.area * energy_density(seen_strain(green_strain(deformation_gradient(x, m)), m).e, m.k);
 }
 
 VecN<9> membrane_gradient(const TriStencil& x, const MembraneElement& m) {
   const Mat32 f = deformation_gradient(x, m);
-  return nodal_gradient(f, seen_stress(seen_strain(green_strain(f), m.compression), m.k), m);
+  return nodal_gradient(f, seen_stress(seen_strain(green_strain(f), m), m.k), m);
 }
 
 MatN<9> membrane_hessian(const TriStencil& x, const MembraneElement& m) {
   const Mat32 f = deformation_gradient(x, m);
-  const SeenStrain e = seen_strain(green_strain(f), m.compression);
+  const SeenStrain e = seen_strain(green_strain(f), m);
   return hessian_with(f, seen_stress(e, m.k), tangent_element(m, e.slope));
 }
 
 MatN<9> membrane_hessian_psd(const TriStencil& x, const MembraneElement& m) {
   const Mat32 f = deformation_gradient(x, m);
-  const SeenStrain e = seen_strain(green_strain(f), m.compression);
+  const SeenStrain e = seen_strain(green_strain(f), m);
   return hessian_with(f, clamp_negative(seen_stress(e, m.k)), tangent_element(m, e.slope));
 }
 
 MembraneEval membrane_eval(const TriStencil& x, const MembraneElement& m) {
   const Mat32 f = deformation_gradient(x, m);
-  const SeenStrain e = seen_strain(green_strain(f), m.compression);
+  const SeenStrain e = seen_strain(green_strain(f), m);
   const Mat2 s = seen_stress(e, m.k);
   MembraneEval r;
   r.energy = m.area * energy_density(e.e, m.k);

@@ -9,6 +9,14 @@
 // strain E counts as compression * E in psi, so the element keeps its full response in tension
 // and shear and carries compression^2 of the stiffness against compression. 1 is the plain
 // material.
+//
+// A coarse element also stands for the folds it was made over: its chords were shorter than its
+// material by the gathering those folds held. With `gathering` > 0 it remembers that strain
+// (`gathered`, warp and weft, <= 0): up to it, compression stays as soft as `compression` says
+// (folds open and close freely), and beyond it the element resists with the steeper factor
+// `gathering` (fine cloth gathers further only by bending its folds tighter), so coarse cloth
+// keeps the gathering it had instead of collapsing further at no cost (an extension of Koh et
+// al. 2014's coarsening, bench/RESULTS.md "Coarse cloth keeps its gathering").
 #pragma once
 #include <array>
 
@@ -26,6 +34,8 @@ struct MembraneElement {
   double area = 0;                  // rest (material-space) area
   MembraneStiffness k;
   double compression = 1;           // in (0, 1]: see above
+  Vec2 gathered = Vec2::Zero();     // warp and weft Green strain (<= 0) the element was made with
+  double gathering = 0;             // strain factor beyond `gathered`; 0: `compression` throughout
 };
 
 using TriStencil = std::array<Vec3, 3>;

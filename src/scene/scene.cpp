@@ -604,7 +604,7 @@ CameraPath parse_camera(const JsonValue& j) {
 ViewParams parse_view(const JsonValue& j) {
   j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "l_min", "l_max", "silhouette_threshold", "settle",
                "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation", "defocus_scale",
-               "motion_blur_scale", "occlusion", "v_occluded", "floor_in_frame", "fold_length", "fold_time"});
+               "motion_blur_scale", "occlusion", "v_occluded", "floor_in_frame", "fold_length", "fold_time", "gathering"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -629,6 +629,8 @@ ViewParams parse_view(const JsonValue& j) {
   p.floor_in_frame = j.boolean_or("floor_in_frame", p.floor_in_frame);
   p.fold_length = j.non_negative_or("fold_length", p.fold_length);
   p.fold_time = j.non_negative_or("fold_time", p.fold_time);
+  p.gathering = j.non_negative_or("gathering", p.gathering);
+  if (p.gathering > 1) j.at("gathering").fail("must be at most 1 (the material's own stiffness)");
   p.v_occluded = j.positive_or("v_occluded", p.v_back);
   if (p.v_occluded > 1) j.at("v_occluded").fail("must be at most 1");
   if (p.v_occluded < p.v_out) j.at("v_occluded").fail("must be at least v_out");

@@ -199,13 +199,17 @@ void Simulation::remesh_garments(FrameStats& stats) {
     stats.collapses += r.collapses;
     stats.remesh_refused += r.refused;
   }
+  // Coarse faces remember the gathering they were made with (membrane.hpp), those the remesher
+  // made too.
+  if (viewing && scene_.view.gathering > 0)
+    for (Mesh& mesh : garments_) record_gathering(mesh);
   // An unchanged mesh keeps its system (elements, pattern, symbolic factorization) and collider.
   const bool changed = stats.splits + stats.flips + stats.collapses > 0;
   if (changed) rebuild();
   else if (viewing) {
     std::size_t first_face = 0;
     for (const Mesh& mesh : garments_) {
-      update_compression(model_, mesh, first_face);
+      update_compression(model_, mesh, first_face, gathering());
       first_face += static_cast<std::size_t>(mesh.num_faces());
     }
   }
@@ -385,7 +389,7 @@ void Simulation::rebuild() {
   restart_pending_ = false;
   model_ = ClothModel();
   offsets_.clear();
-  for (std::size_t g = 0; g < garments_.size(); ++g) offsets_.push_back(append_garment(model_, garments_[g], scene_.garments[g].material));
+  for (std::size_t g = 0; g < garments_.size(); ++g) offsets_.push_back(append_garment(model_, garments_[g], scene_.garments[g].material, gathering()));
   LinearSolverParams solver_params = scene_.solver.params;
   solver_params.threads = options_.threads;
   integrator_ = std::make_unique<ImplicitIntegrator>(model_, scene_.solver.linear, solver_params);

@@ -110,6 +110,9 @@ class Simulation {
 
  private:
   void rebuild();                       // elements, assembler and solver from the meshes
+  // The membranes' resistance to gathering beyond what coarse faces were made with: the view
+  // block's in view mode, none otherwise.
+  double gathering() const { return options_.mode == SimMode::View ? scene_.view.gathering : 0.0; }
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
   // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip

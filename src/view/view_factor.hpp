@@ -65,6 +65,10 @@ struct ViewParams {
   // s: where those folds set a face's coarsening, its compression factor softens to the law's
   // over this time rather than at once, as the folds take time to form (0: at once).
   double fold_time = 0.4;
+  // A coarse face remembers the gathering (compressive strain) it was made with and resists
+  // being gathered further with this strain factor (membrane.hpp; its stiffness the square),
+  // where the compression law alone lets it collapse at almost no cost (an extension). 0: off.
+  double gathering = 0;
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.
   bool motion_anticipation = true;

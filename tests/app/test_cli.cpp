@@ -437,9 +437,10 @@ TEST_F(CliTest, AResumedRunIsTheRunThatNeverStopped) {
   SCOPED_TRACE("adaptive, with a ball");
   resumed_run_matches("adaptive", true);
   // Seen from 10 m, the sheet's faces soften towards the folds too fine for the image over
-  // view.fold_time, from the factors the checkpoint holds.
-  SCOPED_TRACE("view, far");
-  resumed_run_matches("view", false);
+  // view.fold_time, from the factors the checkpoint holds, and the coarse faces the rising ball
+  // gathers keep the gathering they were made with (view.gathering), as the checkpoint holds it.
+  SCOPED_TRACE("view, far, with a ball");
+  resumed_run_matches("view", true);
 }
 
 void CliTest::resumed_run_matches(const std::string& mode, bool with_ball) {
@@ -447,7 +448,7 @@ void CliTest::resumed_run_matches(const std::string& mode, bool with_ball) {
   if (mode == "fixed") scene.replace(1, 0, R"("solver": {"linear": "cholmod-pcg"}, )");
   if (with_ball) scene.replace(1, 0, kRisingBall);
   if (mode == "view")
-    scene.replace(1, 0, R"("camera": {"fov": 40, "width": 160, "height": 120, "keys": [{"time": 0, "position": [0.5, -0.5, 10], "target": [0.5, -0.5, 0]}]}, )");
+    scene.replace(1, 0, R"("view": {"gathering": 0.3}, "camera": {"fov": 40, "width": 160, "height": 120, "keys": [{"time": 0, "position": [0.5, -0.5, 10], "target": [0.5, -0.5, 0]}]}, )");
   const std::string name = mode + (with_ball ? "_ball" : "");
   const std::string scene_path = write(name + ".json", scene);
   const fs::path whole = dir_ / (name + "_whole"), pieces = dir_ / (name + "_pieces");
@@ -490,12 +491,17 @@ void CliTest::resumed_run_matches(const std::string& mode, bool with_ball) {
     const auto& compression = a.face_attrs().get<double>(kCompressionAttr);
     const auto& coarsening = a.face_attrs().get<double>(kCoarseningAttr);
     const auto& fold_led = a.face_attrs().get<double>(kFoldLedAttr);
-    int easing = 0;
+    // So are the gatherings the coarse faces were made with (view.gathering).
+    const auto& gathered = a.face_attrs().get<Vec2>(kGatheredAttr);
+    int easing = 0, gathering = 0;
     for (FaceId f : a.faces()) {
       EXPECT_EQ(compression[f], b.face_attrs().get<double>(kCompressionAttr)[f]) << "face " << f.idx;
       if (fold_led[f] > 0 && compression[f] > coarse_compression_factor(coarsening[f])) ++easing;
+      EXPECT_EQ(gathered[f], b.face_attrs().get<Vec2>(kGatheredAttr)[f]) << "face " << f.idx;
+      gathering += gathered[f].minCoeff() < 0;
     }
     EXPECT_GT(easing, 0);
+    EXPECT_GT(gathering, 0);
   }
   const std::vector<std::string> rows = stats_without_timings(whole / "stats.csv");
   ASSERT_EQ(rows.size(), 7u);

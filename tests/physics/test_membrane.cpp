@@ -182,6 +182,87 @@ TEST(Membrane, CompressionFactorScalesOnlyCompressiveWarpAndWeftStrain) {
   EXPECT_NEAR(g[3], area * 0.9 * s11 / 0.1, 1e-12);  // node 1's x force: A F S g_1, g_1 = (1/0.1, 0)
 }
 
+// A coarse element that remembers the gathering it was made with (warp -0.05): compressed less
+// than that, the compression factor alone (bit for bit the element without the memory); beyond
+// it, the strain psi sees continues with the gathering factor, by hand; continuous at the
+// gathered strain; stretched, the plain material.
+TEST(Membrane, GatheringBeyondWhatTheElementWasMadeWithMeetsTheSteeperFactor) {
+  const MembraneStiffness k{5000, 700, 3500, 300};
+  const double a = 0.2, g = 0.3, made = -0.05;
+  const MembraneElement soft = make_membrane_element(Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), k, a);
+  MembraneElement kept = soft;
+  kept.gathered = Vec2(made, 0);
+  kept.gathering = g;
+  const double area = 0.005;
+  // Warp 0.9, weft 1.05: E11 = -0.095 beyond the gathered -0.05, E22 = 0.05125 stretched.
+  const double e11 = 0.5 * (0.9 * 0.9 - 1), e22 = 0.5 * (1.05 * 1.05 - 1);
+  const double seen11 = a * made + g * (e11 - made);  // -0.01 - 0.0135
+  EXPECT_NEAR(seen11, -0.0235, 1e-15);
+  const TriStencil beyond{Vec3(0, 0, 0), Vec3(0.09, 0, 0), Vec3(0, 0.105, 0)};
+  EXPECT_NEAR(membrane_energy(beyond, kept), area * 0.5 * (k.c11 * seen11 * seen11 + 2 * k.c12 * seen11 * e22 + k.c22 * e22 * e22), 1e-15);
+  // Node 1's warp force: A F S g_1 with S11 = dpsi/dE11 = g (c11 seen11 + c12 E22).
+  EXPECT_NEAR(membrane_gradient(beyond, kept)[3], area * 0.9 * g * (k.c11 * seen11 + k.c12 * e22) / 0.1, 1e-12);
+  // Warp 0.98 (E11 = -0.0198, within the gathering): the compression factor alone.
+  const TriStencil within{Vec3(0, 0, 0), Vec3(0.098, 0, 0), Vec3(0, 0.105, 0)};
+  EXPECT_EQ(membrane_energy(within, kept), membrane_energy(within, soft));
+  EXPECT_EQ(membrane_gradient(within, kept), membrane_gradient(within, soft));
+  // Continuous where the pieces meet: across E11 = -0.05 (2e-9 of warp stretch apart) the energy
+  // changes by its slope times the step (dW/ds about 0.05 J), where a jump would be of W itself.
+  const double at = std::sqrt(1 + 2 * made);
+  const auto warp = [](double s) { return TriStencil{Vec3(0, 0, 0), Vec3(0.1 * s, 0, 0), Vec3(0, 0.1, 0)}; };
+  const double below = membrane_energy(warp(at - 1e-9), kept), above = membrane_energy(warp(at + 1e-9), kept);
+  EXPECT_NEAR(below, above, 1e-6 * above);
+  EXPECT_NEAR(0.5 * (below + above), area * 0.5 * k.c11 * (a * made) * (a * made), 1e-6 * above);
+  // Without the compression law (factor 1) nothing is gathered: the plain material.
+  MembraneElement plain = make_membrane_element(Vec2(0, 0), Vec2(0.1, 0), Vec2(0, 0.1), k);
+  const double plain_energy = membrane_energy(beyond, plain);
+  plain.gathered = Vec2(made, 0);
+  plain.gathering = g;
+  EXPECT_EQ(membrane_energy(beyond, plain), plain_energy);
+}
+
+// Random coarse elements with a gathered strain on either side of their compressed warp and
+// weft: gradient and Hessian match finite differences in every piece.
+TEST(Membrane, GatheredStrainKeepsGradientAndHessianExact) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int beyond = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    auto [x, m] = random_membrane(rng);
+    m.compression = 0.05 + 0.5 * (0.5 + 0.5 * U(rng));
+    m.gathering = 0.2 + 0.6 * (0.5 + 0.5 * U(rng));
+    m.gathered = Vec2(-0.08 * (0.5 + 0.5 * U(rng)), -0.08 * (0.5 + 0.5 * U(rng)));
+    const Vec3 d = Vec3(U(rng), U(rng), 0.2 * U(rng)).normalized();
+    const double shrink = 0.2 * (0.5 + 0.5 * U(rng));
+    for (auto& p : x) p -= shrink * d * d.dot(p - x[0]);
+    const Mat2 e = green_strain(deformation_gradient(x, m));
+    bool near_kink = false;
+    for (int i = 0; i < 2; ++i) near_kink |= std::abs(e(i, i)) < 1e-4 || std::abs(e(i, i) - m.gathered[i]) < 1e-4;
+    if (near_kink) continue;
+    beyond += e(0, 0) < m.gathered[0] || e(1, 1) < m.gathered[1];
+    const VecN<9> q = flatten(x);
+    VecN<9> fd;
+    MatN<9> fdh;
+    for (int i = 0; i < 9; ++i) {
+      VecN<9> qp = q, qm = q;
+      qp[i] += 1e-7;
+      qm[i] -= 1e-7;
+      fd[i] = (membrane_energy(unflatten(qp), m) - membrane_energy(unflatten(qm), m)) / 2e-7;
+      qp = q;
+      qm = q;
+      qp[i] += 1e-6;
+      qm[i] -= 1e-6;
+      fdh.col(i) = (membrane_gradient(unflatten(qp), m) - membrane_gradient(unflatten(qm), m)) / 2e-6;
+    }
+    const VecN<9> grad = membrane_gradient(x, m);
+    const MatN<9> hess = membrane_hessian(x, m);
+    EXPECT_LT((grad - fd).norm() / grad.norm(), 1e-5) << "trial " << trial;
+    EXPECT_LT((hess - fdh).norm() / hess.norm(), 1e-4) << "trial " << trial;
+    EXPECT_GT(min_eigenvalue<9>(membrane_eval(x, m).hessian), -1e-10 * hess.norm()) << "trial " << trial;
+  }
+  EXPECT_GE(beyond, 15);
+}
+
 // The factor of a coarsened element, by hand: 1 at or below its own resolution (and for a
 // coarsening that is not a number), 1/4 at twice the squared length, continuous at 1, falling,
 // and not below 1e-6 however coarse.
