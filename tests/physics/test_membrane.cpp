@@ -241,19 +241,9 @@ TEST(Membrane, GatheredStrainKeepsGradientAndHessianExact) {
     if (near_kink) continue;
     beyond += e(0, 0) < m.gathered[0] || e(1, 1) < m.gathered[1];
     const VecN<9> q = flatten(x);
-    VecN<9> fd;
-    MatN<9> fdh;
-    for (int i = 0; i < 9; ++i) {
-      VecN<9> qp = q, qm = q;
-      qp[i] += 1e-7;
-      qm[i] -= 1e-7;
-      fd[i] = (membrane_energy(unflatten(qp), m) - membrane_energy(unflatten(qm), m)) / 2e-7;
-      qp = q;
-      qm = q;
-      qp[i] += 1e-6;
-      qm[i] -= 1e-6;
-      fdh.col(i) = (membrane_gradient(unflatten(qp), m) - membrane_gradient(unflatten(qm), m)) / 2e-6;
-    }
+    const Eigen::VectorXd fd = test::central_differences([&](const VecN<9>& p) { return membrane_energy(unflatten(p), m); }, q, 1e-7);
+    const Eigen::MatrixXd fdh =
+        test::central_differences([&](const VecN<9>& p) { return VecN<9>(membrane_gradient(unflatten(p), m)); }, q, 1e-6);
     const VecN<9> grad = membrane_gradient(x, m);
     const MatN<9> hess = membrane_hessian(x, m);
     EXPECT_LT((grad - fd).norm() / grad.norm(), 1e-5) << "trial " << trial;
