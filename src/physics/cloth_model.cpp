@@ -80,12 +80,13 @@ void update_compression(ClothModel& model, const Mesh& mesh, std::size_t first_f
   for (FaceId f : mesh.faces()) set_compression(model.membranes.at(i++), f, compression, gathered, gathering);
 }
 
-void record_gathering(Mesh& mesh, const char* free) {
+void record_gathering(Mesh& mesh, const char* unbound_attr) {
   if (!mesh.face_attrs().has(kCompressionAttr)) return;
   const auto& compression = mesh.face_attrs().get<double>(kCompressionAttr);
   auto& gathered = mesh.face_attrs().get_or_add<Vec2>(kGatheredAttr, Vec2::Zero());
   auto& recorded_area = mesh.face_attrs().get_or_add<double>(kGatheredAreaAttr, 0.0);
-  const auto* unbound = free != nullptr && mesh.face_attrs().has(free) ? &mesh.face_attrs().get<double>(free) : nullptr;
+  const auto* unbound =
+      unbound_attr != nullptr && mesh.face_attrs().has(unbound_attr) ? &mesh.face_attrs().get<double>(unbound_attr) : nullptr;
   const double no_limit = -std::numeric_limits<double>::infinity();
   for (FaceId f : mesh.faces()) {
     if (!(compression[f] < 1)) {

@@ -49,9 +49,9 @@ void update_compression(ClothModel& model, const Mesh& mesh, std::size_t first_f
 // its material area yet (coarsened, split or collapsed since the last call): its compressive
 // warp and weft Green strain now (0 where stretched). A face at factor 1 forgets it. Faces that
 // keep their material keep what they were made with. Faces where the double face attribute
-// `free` (when given and present) is above 0 keep no memory (-infinity: the compression factor
-// alone, however far they gather).
-void record_gathering(Mesh& mesh, const char* free = nullptr);
+// named `unbound_attr` (when given and present) is above 0 keep no memory (-infinity: the
+// compression factor alone, however far they gather).
+void record_gathering(Mesh& mesh, const char* unbound_attr = nullptr);
 
 // Sets the edge attribute kRestAngleAttr to the current dihedral angles (a garment whose rest
 // shape is its initial world shape).
