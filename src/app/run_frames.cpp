@@ -44,6 +44,7 @@ DrawnFrame draw_frame(const Camera& camera, const FrameFiles& files, double scal
     mesh.wireframe = cloth && style.wireframe;
     meshes.push_back(std::move(mesh));
     drawn.cloth.push_back(cloth);
+    drawn.names.push_back(key);
   }
   drawn.pixels = render(camera, meshes, scale);
   return drawn;

@@ -14,10 +14,12 @@
 
 namespace vdc {
 
-// A frame drawn: its pixels, and per mesh whether it is cloth (a garment) or a body.
+// A frame drawn: its pixels, and per mesh whether it is cloth (a garment) or a body and its
+// frame file's name without the frame number (cloth_<garment>, obstacle_<name>).
 struct DrawnFrame {
   RenderedFrame pixels;
   std::vector<char> cloth;
+  std::vector<std::string> names;
 };
 
 // How the cloth is drawn: each garment in its own colour, or each face by its view factor (from

@@ -33,6 +33,20 @@ RenderComparison compare_renders(const RenderedFrame& a, const std::vector<char>
   return c;
 }
 
+MeshOverlap compare_mesh(const RenderedFrame& a, int32_t mesh_a, const RenderedFrame& b, int32_t mesh_b) {
+  if (a.mesh.size() != b.mesh.size()) throw std::invalid_argument("compare_mesh: image sizes differ");
+  MeshOverlap o;
+  for (std::size_t i = 0; i < a.mesh.size(); ++i) {
+    const bool in_a = mesh_a >= 0 && a.mesh[i] == mesh_a, in_b = mesh_b >= 0 && b.mesh[i] == mesh_b;
+    o.pixels_a += in_a;
+    o.pixels_b += in_b;
+    o.both += in_a && in_b;
+    o.either += in_a || in_b;
+  }
+  if (o.either > 0) o.iou = static_cast<double>(o.both) / o.either;
+  return o;
+}
+
 RgbImage side_by_side(const RgbImage& a, const RgbImage& b) {
   if (a.width != b.width || a.height != b.height) throw std::invalid_argument("side_by_side: image sizes differ");
   const int gap = 4;

@@ -19,6 +19,19 @@ struct RenderComparison {
 RenderComparison compare_renders(const RenderedFrame& a, const std::vector<char>& cloth_a, const RenderedFrame& b,
                                  const std::vector<char>& cloth_b);
 
+// How one mesh shows in two renders (a garment in a view run and in its adaptive run): its
+// pixels in each (where it is the nearest surface), those showing it in both and in either,
+// and their intersection over union (1 when neither shows it).
+struct MeshOverlap {
+  int pixels_a = 0, pixels_b = 0;
+  int both = 0, either = 0;
+  double iou = 1;
+};
+
+// Mesh `mesh_a` of frame a against mesh `mesh_b` of frame b (-1: a mesh the frame lacks, no
+// pixel). Same image sizes.
+MeshOverlap compare_mesh(const RenderedFrame& a, int32_t mesh_a, const RenderedFrame& b, int32_t mesh_b);
+
 // A, B and their difference (absolute, four times amplified) side by side.
 RgbImage side_by_side(const RgbImage& a, const RgbImage& b);
 

@@ -112,4 +112,27 @@ std::vector<ShotFidelity> summarise_shots(const std::vector<FrameFidelity>& fram
   return summaries;
 }
 
+std::vector<GarmentFidelity> summarise_garments(const std::vector<GarmentFrame>& frames) {
+  struct Sums {
+    int frames = 0;
+    double both = 0, either = 0, floor_both = 0, floor_either = 0;
+  };
+  std::map<std::string, Sums> by_garment;
+  for (const GarmentFrame& f : frames) {
+    if (f.pixels_either == 0) continue;
+    Sums& s = by_garment[f.garment];
+    ++s.frames;
+    s.both += f.overlap * f.pixels_either;
+    s.either += f.pixels_either;
+    if (std::isnan(f.floor_overlap)) continue;
+    s.floor_both += f.floor_overlap * f.floor_pixels_either;
+    s.floor_either += f.floor_pixels_either;
+  }
+  std::vector<GarmentFidelity> out;
+  for (const auto& [garment, s] : by_garment)
+    out.push_back({garment, s.frames, s.both / s.either, s.floor_either > 0 ? s.floor_both / s.floor_either : kNotMeasured});
+  std::stable_sort(out.begin(), out.end(), [](const GarmentFidelity& a, const GarmentFidelity& b) { return a.overlap < b.overlap; });
+  return out;
+}
+
 }  // namespace vdc

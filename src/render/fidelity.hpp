@@ -65,6 +65,33 @@ struct ShotFidelity {
 // and judged against `targets`; overlap is judged only where floor overlaps were measured.
 std::vector<ShotFidelity> summarise_shots(const std::vector<FrameFidelity>& frames, const FidelityTargets& targets);
 
+// One garment at one measured frame: its own silhouette (where it is the nearest surface)
+// against the reference's, to tell which garment of a scene departs.
+struct GarmentFrame {
+  int frame = 0;
+  int shot = 0;
+  std::string garment;
+  int pixels_run = 0, pixels_reference = 0;
+  int pixels_either = 0;                // showing it in the run or the reference
+  double overlap = 1;                   // IoU of the garment's pixels, run against reference
+  int floor_pixels_either = 0;          // showing it in the floor run or the reference
+  double floor_overlap = kNotMeasured;  // the same, floor run against reference
+};
+
+// A garment over the measured frames: the pixels showing it in both runs over those showing it
+// in either, summed over the frames (each frame weighed by how much of it shows, so that a
+// sliver at the edge of the frame or behind a body counts for little).
+struct GarmentFidelity {
+  std::string garment;
+  int frames = 0;  // showing it in the run or the reference
+  double overlap = 1;
+  double floor_overlap = kNotMeasured;  // over the frames with a floor overlap
+};
+
+// Each garment's frames summed up, the lowest overlap first (ties by name); a garment no frame
+// shows is left out.
+std::vector<GarmentFidelity> summarise_garments(const std::vector<GarmentFrame>& frames);
+
 // A run's mean over its reference's, as the summaries take it: 1 for 0/0 (alike), +infinity
 // for x/0 with x > 0.
 double ratio_of_means(double run_mean, double reference_mean);

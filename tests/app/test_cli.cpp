@@ -729,6 +729,7 @@ std::string first_line(const fs::path& path) {
 const std::string kFidelityFramesHeader =
     "frame,time,shot,cloth_pixels_run,cloth_pixels_reference,overlap,floor_overlap,detail_run,detail_reference,detail_floor,"
     "popping_run,popping_reference,popping_floor";
+const std::string kFidelityGarmentsHeader = "frame,shot,garment,pixels_run,pixels_reference,overlap,floor_overlap";
 const std::string kFidelityShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
     "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed";
@@ -815,7 +816,16 @@ TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
   EXPECT_GT(most_popping, 0) << "the sheet falls";
   EXPECT_GT(std::stod(frames[4].at("detail_run")), 0) << "the hanging sheet curves";
   EXPECT_EQ(first_line(dir / "fidelity.csv"), kFidelityFramesHeader);
+  EXPECT_EQ(first_line(dir / "fidelity_garments.csv"), kFidelityGarmentsHeader);
   EXPECT_EQ(first_line(dir / "fidelity_shots.csv"), kFidelityShotsHeader);
+  EXPECT_FALSE(fs::exists(dir / "fidelity_garments.csv.partial"));
+  const auto garment_rows = csv_rows(dir / "fidelity_garments.csv");
+  ASSERT_EQ(garment_rows.size(), 5u) << "one garment, five frames";
+  for (const auto& row : garment_rows) {
+    EXPECT_EQ(row.at("pixels_run"), frames[static_cast<std::size_t>(std::stoi(row.at("frame")))].at("cloth_pixels_run"));
+    EXPECT_EQ(row.at("overlap"), "1") << row.at("frame");
+    EXPECT_EQ(row.at("floor_overlap"), "1") << row.at("frame");
+  }
   const auto shots = csv_rows(dir / "fidelity_shots.csv");
   ASSERT_EQ(shots.size(), 3u);
   const std::vector<std::string> expect_shot{"0", "1", "all"}, expect_frames{"2", "3", "5"}, expect_pairs{"1", "2", "3"};
@@ -901,12 +911,25 @@ TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHan
     EXPECT_EQ(row.at("cloth_pixels_reference"), "864") << row.at("frame");
     EXPECT_NEAR(std::stod(row.at("overlap")), 31.0 / 41.0, 1e-6) << row.at("frame");
   }
+  // Garment by garment: a overlaps its place in the reference by 15 x 24 over 25 x 24 pixels, b
+  // by all of its own; a first, the lower.
+  const auto garment_rows = csv_rows(plain / "fidelity_garments.csv");
+  ASSERT_EQ(garment_rows.size(), 6u) << "two garments, three frames";
+  for (const auto& row : garment_rows) {
+    const bool a = row.at("garment") == "a";
+    EXPECT_EQ(row.at("pixels_run"), a ? "480" : "384") << row.at("frame");
+    EXPECT_EQ(row.at("pixels_reference"), row.at("pixels_run")) << row.at("frame");
+    EXPECT_NEAR(std::stod(row.at("overlap")), a ? 0.6 : 1.0, 1e-12) << row.at("garment") << " " << row.at("frame");
+    EXPECT_EQ(row.at("floor_overlap"), "") << "no floor";
+  }
+  EXPECT_NE(out_.str().find("garments by overlap over the run, lowest first: a 0.600, b 1.000\n"), std::string::npos) << out_.str();
   // Against the unmoved run as the floor (overlap 1), both overlap targets fail: exit status 3.
   EXPECT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--floor", out_dir(), "--scale", "1", "--out", floored.string()}),
             kExitSimulationFailed)
       << out_.str() << err_.str();
   EXPECT_NE(out_.str().find("overlap 0.756 mean / 0.756 min (floor 1.000 / 1.000)"), std::string::npos) << out_.str();
   EXPECT_NE(out_.str().find(": fail (overlap mean, overlap min)"), std::string::npos) << out_.str();
+  EXPECT_NE(out_.str().find("lowest first: a 0.600 (floor 1.000), b 1.000 (floor 1.000)\n"), std::string::npos) << out_.str();
   const auto shots = csv_rows(floored / "fidelity_shots.csv");
   ASSERT_EQ(shots.size(), 2u);
   EXPECT_EQ(shots[1].at("shot"), "all");

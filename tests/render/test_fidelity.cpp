@@ -201,6 +201,36 @@ TEST(FidelitySummary, PoppingWithoutPairsIsNotJudgedAndStillnessIsAlike) {
   EXPECT_TRUE(summarise_shots({}, FidelityTargets{}).empty());
 }
 
+// Garment x: 90 of 100 pixels alike at one frame, 150 of 300 at the next: 240 / 400 = 0.6 over
+// the run (the frames' mean, 0.7, would let the smaller frame count as much); its floor 100 of
+// 100 and 160 of 200: 260 / 300. Garment z: 0.95 of 20 pixels, no floor. Garment y never shows.
+TEST(FidelitySummary, GarmentsArePooledOverTheirPixelsLowestFirst) {
+  auto frame = [](int k, const char* garment, int either, double overlap, int floor_either, double floor_overlap) {
+    GarmentFrame g;
+    g.frame = k;
+    g.garment = garment;
+    g.pixels_either = either;
+    g.overlap = overlap;
+    g.floor_pixels_either = floor_either;
+    g.floor_overlap = floor_overlap;
+    return g;
+  };
+  const double none = kNotMeasured;
+  const std::vector<GarmentFidelity> g = summarise_garments({frame(0, "z", 20, 0.95, 0, none), frame(0, "x", 100, 0.9, 100, 1.0),
+                                                             frame(0, "y", 0, 1.0, 0, 1.0), frame(1, "x", 300, 0.5, 200, 0.8),
+                                                             frame(1, "y", 0, 1.0, 0, 1.0)});
+  ASSERT_EQ(g.size(), 2u);
+  EXPECT_EQ(g[0].garment, "x");
+  EXPECT_EQ(g[0].frames, 2);
+  EXPECT_NEAR(g[0].overlap, 0.6, 1e-15);
+  EXPECT_NEAR(g[0].floor_overlap, 260.0 / 300.0, 1e-15);
+  EXPECT_EQ(g[1].garment, "z");
+  EXPECT_EQ(g[1].frames, 1);
+  EXPECT_NEAR(g[1].overlap, 0.95, 1e-15);
+  EXPECT_TRUE(std::isnan(g[1].floor_overlap));
+  EXPECT_TRUE(summarise_garments({}).empty());
+}
+
 TEST(FidelitySummary, RatioOfMeans) {
   EXPECT_EQ(ratio_of_means(3, 4), 0.75);
   EXPECT_EQ(ratio_of_means(0, 0), 1.0);

@@ -235,6 +235,19 @@ TEST(RenderComparison, IdenticalRendersMatchAndAShiftedSquareOverlapsAsExpected)
   const RenderComparison body = compare_renders(a, {0}, b, {0});
   EXPECT_EQ(body.cloth_pixels_a, 0);
   EXPECT_EQ(body.cloth_iou, 1.0);
+  // One mesh at a time: mesh 0 of a against mesh 0 of b is the square and its shifted copy,
+  // pixel counts those of each; a mesh a frame lacks (-1) shows nowhere.
+  const MeshOverlap square_moved = compare_mesh(a, 0, b, 0);
+  EXPECT_EQ(square_moved.pixels_a, pixels_of(a, 0));
+  EXPECT_EQ(square_moved.pixels_b, pixels_of(b, 0));
+  EXPECT_EQ(square_moved.pixels_a + square_moved.pixels_b, square_moved.both + square_moved.either);
+  EXPECT_EQ(square_moved.iou, shifted.cloth_iou);
+  const MeshOverlap missing = compare_mesh(a, 0, b, -1);
+  EXPECT_EQ(missing.pixels_b, 0);
+  EXPECT_EQ(missing.both, 0);
+  EXPECT_EQ(missing.either, pixels_of(a, 0));
+  EXPECT_EQ(missing.iou, 0.0);
+  EXPECT_EQ(compare_mesh(a, -1, b, -1).iou, 1.0) << "shown by neither: alike";
   const RgbImage panels = side_by_side(a.image, b.image);
   EXPECT_EQ(panels.width, 3 * 320 + 8);
   EXPECT_EQ(panels.height, 240);
