@@ -9,6 +9,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "app/cli.hpp"
@@ -157,11 +158,10 @@ int32_t mesh_named(const DrawnFrame& frame, const std::string& name) {
 
 // Each garment of the run or the reference on its own (compare_mesh): which one departs.
 std::vector<GarmentFrame> measure_garments(const DrawnRuns& now) {
-  std::vector<std::string> names;
+  std::set<std::string> names;  // in name order
   for (std::size_t k = 0; k < 2; ++k)
     for (std::size_t m = 0; m < now[k].names.size(); ++m)
-      if (now[k].cloth[m] && std::find(names.begin(), names.end(), now[k].names[m]) == names.end()) names.push_back(now[k].names[m]);
-  std::sort(names.begin(), names.end());
+      if (now[k].cloth[m]) names.insert(now[k].names[m]);
   std::vector<GarmentFrame> out;
   for (const std::string& name : names) {
     const int32_t reference = mesh_named(now[1], name);

@@ -202,7 +202,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
   // Coarse faces remember the gathering they were made with (membrane.hpp), those the remesher
   // made too; not those coarsened for folds too fine for the image, which must gather as the
   // folded cloth does.
-  if (viewing && scene_.view.gathering > 0)
+  if (viewing && gathering() > 0)
     for (Mesh& mesh : garments_) record_gathering(mesh, kFoldLedAttr);
   // An unchanged mesh keeps its system (elements, pattern, symbolic factorization) and collider.
   const bool changed = stats.splits + stats.flips + stats.collapses > 0;

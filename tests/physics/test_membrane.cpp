@@ -116,6 +116,15 @@ TEST(Membrane, UniaxialStretchMatchesAnalyticEnergy) {
   EXPECT_NEAR(membrane_energy(x, m), 0.005 * 0.5 * 5000 * e11 * e11, 1e-15);
 }
 
+// Shrinks the world triangle by up to `most` (a fraction) along a random, mostly in-plane
+// direction.
+void squeeze_randomly(TriStencil& x, std::mt19937& rng, double most) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  const Vec3 d = Vec3(U(rng), U(rng), 0.2 * U(rng)).normalized();
+  const double shrink = most * (0.5 + 0.5 * U(rng));
+  for (auto& p : x) p -= shrink * d * d.dot(p - x[0]);
+}
+
 // Random elements as above, with a compression factor, deformed so that warp or weft (or both)
 // are compressed in most trials: the scaled energy's gradient and Hessian match finite
 // differences within each piece of its piecewise strain.
@@ -126,10 +135,7 @@ TEST(Membrane, CompressionFactorKeepsGradientAndHessianExact) {
   for (int trial = 0; trial < 50; ++trial) {
     auto [x, m] = random_membrane(rng);
     m.compression = 0.05 + 0.9 * (0.5 + 0.5 * U(rng));
-    // Shrink the world triangle by up to 15% along a random in-plane direction.
-    const Vec3 d = Vec3(U(rng), U(rng), 0.2 * U(rng)).normalized();
-    const double shrink = 0.15 * (0.5 + 0.5 * U(rng));
-    for (auto& p : x) p -= shrink * d * d.dot(p - x[0]);
+    squeeze_randomly(x, rng, 0.15);
     const Mat2 e = green_strain(deformation_gradient(x, m));
     // Finite differences must not straddle a kink of the piecewise strain.
     if (std::abs(e(0, 0)) < 1e-4 || std::abs(e(1, 1)) < 1e-4) continue;
@@ -232,9 +238,7 @@ TEST(Membrane, GatheredStrainKeepsGradientAndHessianExact) {
     m.compression = 0.05 + 0.5 * (0.5 + 0.5 * U(rng));
     m.gathering = 0.2 + 0.6 * (0.5 + 0.5 * U(rng));
     m.gathered = Vec2(-0.08 * (0.5 + 0.5 * U(rng)), -0.08 * (0.5 + 0.5 * U(rng)));
-    const Vec3 d = Vec3(U(rng), U(rng), 0.2 * U(rng)).normalized();
-    const double shrink = 0.2 * (0.5 + 0.5 * U(rng));
-    for (auto& p : x) p -= shrink * d * d.dot(p - x[0]);
+    squeeze_randomly(x, rng, 0.2);
     const Mat2 e = green_strain(deformation_gradient(x, m));
     bool near_kink = false;
     for (int i = 0; i < 2; ++i) near_kink |= std::abs(e(i, i)) < 1e-4 || std::abs(e(i, i) - m.gathered[i]) < 1e-4;
