@@ -51,7 +51,9 @@ const char* kFidelityHelp =
     "  overlap min   >= floor overlap min - X    (--min-margin, default 0.05)\n"
     "  detail ratio  >= X                        (--detail, default 0.9: run's mean over reference's)\n"
     "  popping ratio <= X                        (--popping, default 1.2: run's mean over reference's)\n"
-    "The overlap is judged only with --floor. Exit status: 0 every verdict passes, 3 one fails,\n"
+    "The overlap is judged only with --floor; with it the verdicts also give the floor run's own\n"
+    "detail and popping ratios (what a tiny perturbation already does to them), not judged.\n"
+    "Exit status: 0 every verdict passes, 3 one fails,\n"
     "2 bad usage or input (nothing written).\n"
     "\n"
     "options:\n"
@@ -230,14 +232,15 @@ std::string garments_line(const std::vector<GarmentFidelity>& garments) {
 
 const char* kShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
-    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed\n";
+    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio\n";
 
 void write_shot_row(std::ostream& csv, const ShotFidelity& s) {
   csv << (s.shot < 0 ? "all" : std::to_string(s.shot)) << "," << s.first_frame << "," << s.last_frame << "," << s.frames << ","
       << cell(s.overlap_mean) << "," << cell(s.overlap_min) << "," << cell(s.floor_overlap_mean) << "," << cell(s.floor_overlap_min) << ","
       << cell(s.detail_run_mean) << "," << cell(s.detail_reference_mean) << "," << cell(s.detail_ratio) << "," << s.popping_pairs << ","
       << cell(s.popping_run_mean) << "," << cell(s.popping_reference_mean) << "," << cell(s.popping_ratio) << ","
-      << (s.pass() ? "pass" : "fail") << "," << joined(s.failed, ";") << "\n";
+      << (s.pass() ? "pass" : "fail") << "," << joined(s.failed, ";") << "," << cell(s.detail_floor_ratio) << ","
+      << cell(s.popping_floor_ratio) << "\n";
 }
 
 std::string progress_line(const FrameFidelity& m) {
@@ -250,7 +253,7 @@ std::string progress_line(const FrameFidelity& m) {
 }
 
 // e.g. "shot 2 (frames 75-149): overlap 0.952 mean / 0.930 min (floor 0.968 / 0.941), detail 97%
-// of reference, popping 1.05x: pass"
+// of reference (floor 99%), popping 1.05x (floor 1.01x): pass"
 std::string verdict_line(const ShotFidelity& s) {
   std::ostringstream o;
   o << std::fixed << (s.shot < 0 ? std::string("all") : "shot " + std::to_string(s.shot)) << " (frames " << s.first_frame << "-"
@@ -260,10 +263,12 @@ std::string verdict_line(const ShotFidelity& s) {
   o << ", detail ";
   if (std::isinf(s.detail_ratio)) o << "where the reference has none";
   else o << std::setprecision(0) << 100 * s.detail_ratio << "% of reference";
+  if (std::isfinite(s.detail_floor_ratio)) o << " (floor " << std::setprecision(0) << 100 * s.detail_floor_ratio << "%)";
   o << ", popping ";
   if (std::isnan(s.popping_ratio)) o << "not measured (no consecutive frames)";
   else if (std::isinf(s.popping_ratio)) o << "where the reference has none";
   else o << std::setprecision(2) << s.popping_ratio << "x";
+  if (std::isfinite(s.popping_floor_ratio)) o << " (floor " << std::setprecision(2) << s.popping_floor_ratio << "x)";
   o << ": " << (s.pass() ? "pass" : "fail (" + joined(s.failed, ", ") + ")");
   return o.str();
 }

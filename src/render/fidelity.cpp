@@ -25,7 +25,8 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
   s.overlap_min = std::numeric_limits<double>::infinity();
   double overlap_sum = 0, floor_sum = 0, floor_min = std::numeric_limits<double>::infinity();
   double detail_run = 0, detail_reference = 0, popping_run = 0, popping_reference = 0;
-  int floors = 0;
+  double detail_floor = 0, detail_floor_reference = 0, popping_floor = 0, popping_floor_reference = 0;
+  int floors = 0, detail_floors = 0, popping_floors = 0;
   for (const FrameFidelity* f : frames) {
     s.first_frame = std::min(s.first_frame, f->frame);
     s.last_frame = std::max(s.last_frame, f->frame);
@@ -43,7 +44,19 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
       popping_run += f->popping_run;
       popping_reference += f->popping_reference;
     }
+    if (!std::isnan(f->detail_floor)) {
+      ++detail_floors;
+      detail_floor += f->detail_floor;
+      detail_floor_reference += f->detail_reference;
+    }
+    if (!std::isnan(f->popping_floor) && !std::isnan(f->popping_reference)) {
+      ++popping_floors;
+      popping_floor += f->popping_floor;
+      popping_floor_reference += f->popping_reference;
+    }
   }
+  if (detail_floors > 0) s.detail_floor_ratio = ratio_of_means(detail_floor / detail_floors, detail_floor_reference / detail_floors);
+  if (popping_floors > 0) s.popping_floor_ratio = ratio_of_means(popping_floor / popping_floors, popping_floor_reference / popping_floors);
   s.overlap_mean = overlap_sum / s.frames;
   s.detail_run_mean = detail_run / s.frames;
   s.detail_reference_mean = detail_reference / s.frames;

@@ -57,6 +57,11 @@ struct ShotFidelity {
   // popping_run_mean / popping_reference_mean: 1 for 0/0, +infinity for x/0, kNotMeasured
   // without pairs (then not judged).
   double popping_ratio = kNotMeasured;
+  // The floor run's own detail and popping over the reference's, on the frames (pairs) it was
+  // measured on: what a tiny perturbation already does to them, beside the run's ratios. Not
+  // judged; kNotMeasured without a floor.
+  double detail_floor_ratio = kNotMeasured;
+  double popping_floor_ratio = kNotMeasured;
   std::vector<std::string> failed;  // the targets missed: "overlap mean", "overlap min", "detail", "popping"
   bool pass() const { return failed.empty(); }
 };

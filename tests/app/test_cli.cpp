@@ -732,7 +732,7 @@ const std::string kFidelityFramesHeader =
 const std::string kFidelityGarmentsHeader = "frame,shot,garment,pixels_run,pixels_reference,overlap,floor_overlap";
 const std::string kFidelityShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
-    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed";
+    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio";
 
 // A hanging sheet seen from above and in front, with a cut to another view at 0.07 s: frames 0
 // and 1 are shot 0, frames 2 to 4 shot 1.
@@ -785,8 +785,8 @@ TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
   const std::string path = scene(", \"handles\": [{\"uv\": [[0, 1], [1, 1]]}]", kCutCamera);
   ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "4", "--threads", "1"}), kExitOk) << err_.str();
   ASSERT_EQ(run({"fidelity", path, out_dir(), out_dir(), "--floor", out_dir(), "--scale", "1"}), kExitOk) << out_.str() << err_.str();
-  EXPECT_NE(out_.str().find("shot 0 (frames 0-1): overlap 1.000 mean / 1.000 min (floor 1.000 / 1.000), detail 100% of reference, "
-                            "popping 1.00x: pass"),
+  EXPECT_NE(out_.str().find("shot 0 (frames 0-1): overlap 1.000 mean / 1.000 min (floor 1.000 / 1.000), detail 100% of reference "
+                            "(floor 100%), popping 1.00x (floor 1.00x): pass"),
             std::string::npos)
       << out_.str();
   EXPECT_NE(out_.str().find("shot 1 (frames 2-4): "), std::string::npos) << out_.str();
@@ -840,6 +840,8 @@ TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
     EXPECT_EQ(row.at("popping_ratio"), "1") << row.at("shot");
     EXPECT_EQ(row.at("verdict"), "pass") << row.at("shot");
     EXPECT_EQ(row.at("failed"), "") << row.at("shot");
+    EXPECT_EQ(row.at("detail_floor_ratio"), "1") << row.at("shot");
+    EXPECT_EQ(row.at("popping_floor_ratio"), "1") << row.at("shot");
   }
   // Every other frame: frame 4's popping is measured from frame 3, drawn for it, as above.
   const fs::path every = dir_ / "every2";

@@ -104,6 +104,7 @@ std::vector<FrameFidelity> two_shots(bool with_floor) {
   const double overlap[] = {0.95, 0.90, 0.85, 0.99, 0.97}, floor[] = {0.97, 0.96, 0.95, 0.99, 0.98};
   const double detail_run[] = {2, 2, 2, 0, 0}, detail_reference[] = {2.5, 2.5, 2.5, 0, 0};
   const double popping_run[] = {none, 3, 5, none, 2}, popping_reference[] = {none, 4, 4, none, 0};
+  const double detail_floor[] = {2.5, 2, 2, 0, 0}, popping_floor[] = {none, 2, 4, none, 1};
   for (int k = 0; k < 5; ++k) {
     FrameFidelity& f = r[static_cast<std::size_t>(k)];
     f.frame = 10 + k;
@@ -114,6 +115,8 @@ std::vector<FrameFidelity> two_shots(bool with_floor) {
     f.detail_reference = detail_reference[k];
     f.popping_run = popping_run[k];
     f.popping_reference = popping_reference[k];
+    f.detail_floor = with_floor ? detail_floor[k] : none;
+    f.popping_floor = with_floor ? popping_floor[k] : none;
   }
   return r;
 }
@@ -158,6 +161,15 @@ TEST(FidelitySummary, ShotsAndTheWholeRunAreSummedAndJudged) {
   EXPECT_EQ(s[2].popping_pairs, 3);
   EXPECT_NEAR(s[2].popping_ratio, 1.25, 1e-12);
   EXPECT_EQ(s[2].failed, (std::vector<std::string>{"overlap mean", "overlap min", "detail", "popping"}));
+  // The floor run's own ratios, reported beside and not judged: detail (2.5 + 2 + 2) / 7.5 in
+  // shot 0 and over the run (shot 1: 0 / 0, alike); popping (2 + 4) / (4 + 4) in shot 0, 1 / 0
+  // in shot 1, (2 + 4 + 1) / 8 over the run.
+  EXPECT_NEAR(s[0].detail_floor_ratio, 6.5 / 7.5, 1e-12);
+  EXPECT_EQ(s[1].detail_floor_ratio, 1.0);
+  EXPECT_NEAR(s[2].detail_floor_ratio, 6.5 / 7.5, 1e-12);
+  EXPECT_EQ(s[0].popping_floor_ratio, 0.75);
+  EXPECT_EQ(s[1].popping_floor_ratio, std::numeric_limits<double>::infinity());
+  EXPECT_NEAR(s[2].popping_floor_ratio, 0.875, 1e-12);
 }
 
 TEST(FidelitySummary, TargetsMoveTheVerdict) {
@@ -179,6 +191,8 @@ TEST(FidelitySummary, WithoutAFloorTheOverlapIsReportedButNotJudged) {
   EXPECT_NEAR(s[0].overlap_mean, 0.90, 1e-12);
   EXPECT_TRUE(std::isnan(s[0].floor_overlap_mean));
   EXPECT_TRUE(std::isnan(s[0].floor_overlap_min));
+  EXPECT_TRUE(std::isnan(s[0].detail_floor_ratio));
+  EXPECT_TRUE(std::isnan(s[2].popping_floor_ratio));
   EXPECT_EQ(s[0].failed, (std::vector<std::string>{"detail"}));
 }
 
