@@ -16,6 +16,22 @@ namespace {
 // facing the camera still counts as one.
 constexpr double kDiscontinuityFootprints = 4;
 
+// Sums of a measure and the reference's over the frames (or frame pairs) where both were
+// measured, for the ratio of their means.
+struct PairedSums {
+  double value = 0, reference = 0;
+  int count = 0;
+  void add(double x, double ref) {
+    if (std::isnan(x) || std::isnan(ref)) return;
+    ++count;
+    value += x;
+    reference += ref;
+  }
+  double mean() const { return value / count; }
+  double reference_mean() const { return reference / count; }
+  double ratio() const { return count > 0 ? ratio_of_means(mean(), reference_mean()) : kNotMeasured; }
+};
+
 ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames, const FidelityTargets& targets) {
   ShotFidelity s;
   s.shot = shot;
@@ -24,9 +40,9 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
   s.last_frame = frames.front()->frame;
   s.overlap_min = std::numeric_limits<double>::infinity();
   double overlap_sum = 0, floor_sum = 0, floor_min = std::numeric_limits<double>::infinity();
-  double detail_run = 0, detail_reference = 0, popping_run = 0, popping_reference = 0;
-  double detail_floor = 0, detail_floor_reference = 0, popping_floor = 0, popping_floor_reference = 0;
-  int floors = 0, detail_floors = 0, popping_floors = 0;
+  double detail_run = 0, detail_reference = 0;
+  PairedSums popping, detail_floor, popping_floor;
+  int floors = 0;
   for (const FrameFidelity* f : frames) {
     s.first_frame = std::min(s.first_frame, f->frame);
     s.last_frame = std::max(s.last_frame, f->frame);
@@ -39,24 +55,12 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
     }
     detail_run += f->detail_run;
     detail_reference += f->detail_reference;
-    if (!std::isnan(f->popping_run) && !std::isnan(f->popping_reference)) {
-      ++s.popping_pairs;
-      popping_run += f->popping_run;
-      popping_reference += f->popping_reference;
-    }
-    if (!std::isnan(f->detail_floor)) {
-      ++detail_floors;
-      detail_floor += f->detail_floor;
-      detail_floor_reference += f->detail_reference;
-    }
-    if (!std::isnan(f->popping_floor) && !std::isnan(f->popping_reference)) {
-      ++popping_floors;
-      popping_floor += f->popping_floor;
-      popping_floor_reference += f->popping_reference;
-    }
+    popping.add(f->popping_run, f->popping_reference);
+    detail_floor.add(f->detail_floor, f->detail_reference);
+    popping_floor.add(f->popping_floor, f->popping_reference);
   }
-  if (detail_floors > 0) s.detail_floor_ratio = ratio_of_means(detail_floor / detail_floors, detail_floor_reference / detail_floors);
-  if (popping_floors > 0) s.popping_floor_ratio = ratio_of_means(popping_floor / popping_floors, popping_floor_reference / popping_floors);
+  s.detail_floor_ratio = detail_floor.ratio();
+  s.popping_floor_ratio = popping_floor.ratio();
   s.overlap_mean = overlap_sum / s.frames;
   s.detail_run_mean = detail_run / s.frames;
   s.detail_reference_mean = detail_reference / s.frames;
@@ -68,10 +72,11 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
     if (s.overlap_min < s.floor_overlap_min - targets.min_margin) s.failed.push_back("overlap min");
   }
   if (s.detail_ratio < targets.detail) s.failed.push_back("detail");
-  if (s.popping_pairs > 0) {
-    s.popping_run_mean = popping_run / s.popping_pairs;
-    s.popping_reference_mean = popping_reference / s.popping_pairs;
-    s.popping_ratio = ratio_of_means(s.popping_run_mean, s.popping_reference_mean);
+  s.popping_pairs = popping.count;
+  if (popping.count > 0) {
+    s.popping_run_mean = popping.mean();
+    s.popping_reference_mean = popping.reference_mean();
+    s.popping_ratio = popping.ratio();
     if (s.popping_ratio > targets.popping) s.failed.push_back("popping");
   }
   return s;
