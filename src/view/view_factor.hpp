@@ -35,7 +35,7 @@ struct ViewParams {
   double l_max = 0;                   // pixels: longest visible edge on screen (0: no ceiling)
   double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling
   int samples_per_frame = 4;          // camera samples per frame over the anticipation window
-  double settle = 0;                  // s: factors are 1 before this time (the drape forms uncoarsened by v)
+  double settle = 0;                  // s: before this time the view changes no sizing (the drape forms as in adaptive)
   // A face turned away from the camera takes v_back only where something hides it: its corners
   // and centre all behind a depth image of the bodies and garments (otherwise it is the inside
   // of a garment in plain view, and counts as facing the camera). false: the seed's rule.

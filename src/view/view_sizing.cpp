@@ -89,7 +89,8 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
                   : view.front      ? ViewReason::seen
                                     : ViewReason::back_facing;
     visible_[at] = reason_[at] == ViewReason::seen;
-    factor_[at] = view.factor >= 1 || settling ? 1.0 : anticipated_factor(mesh, f, window, occluders);
+    if (settling) continue;  // factor 1, no screen-space bound, no folds: the adaptive sizing
+    factor_[at] = view.factor >= 1 ? 1.0 : anticipated_factor(mesh, f, window, occluders);
     // With occlusion or floor_in_frame, what is hidden or turned away in frame is no finer than
     // what is seen beside it: the screen-space floor bounds every face in frame (l_max only the
     // seen ones); but cloth a cut within the window will show better (eq. 4 raised its factor:

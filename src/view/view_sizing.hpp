@@ -8,9 +8,10 @@
 // space so that no edge is asked to be shorter than l_min pixels (eqs. 5 to 8; with occlusion on
 // every face in frame, hidden or turned away too) nor, when l_max
 // is set, longer than l_max pixels (an extension: the visible cloth keeps the degrees of
-// freedom its folds need). Before `settle` every factor is 1: a garment finds its
-// drape on the body with nothing coarsened for facing away or being out of frame (the screen-
-// space bounds still apply). Where folds of fold_length are finer than the screen-space floor
+// freedom its folds need). Before `settle` the view changes nothing: every factor is 1 and
+// no screen-space bound applies, so a garment drops from its initial shape and finds its folds
+// on the adaptive method's mesh (the folds that first form decide the shot's; a coarser mesh
+// picks others). Where folds of fold_length are finer than the screen-space floor
 // can show, it also tells compute_sizing how much coarser than those folds a face is
 // (fold_coarsening), so that the compression law softens cloth that stands for them.
 #pragma once

@@ -55,7 +55,11 @@ class CharacterShot : public testing::TestWithParam<CharacterRun> {};
 
 TEST_P(CharacterShot, NoGarmentCrossesABodyAnotherGarmentOrItselfAtAnyFrameEnd) {
   const CharacterRun& p = GetParam();
-  Ensemble run(character_scene(p.scene, p.test_fixed_size), SimOptions{p.mode, p.threads});
+  Scene scene = character_scene(p.scene, p.test_fixed_size);
+  // A view run shorter than the scene's settle would be the adaptive run throughout: coarsen
+  // from the first frame, so that what is checked is the view's coarse cloth.
+  if (p.frames * scene.frame_time <= scene.view.settle) scene.view.settle = 0;
+  Ensemble run(std::move(scene), SimOptions{p.mode, p.threads});
   for (const auto& part : run.parts()) ASSERT_EQ(first_crossing(*part), "") << "at the start";
   for (int f = 0; f < p.frames; ++f) {
     const FrameStats s = run.step_frame();

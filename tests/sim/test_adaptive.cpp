@@ -1,6 +1,7 @@
 // Adaptive mode on sheet-hang: remeshed every frame, the mesh stays valid, every edge within
 // the sizing field, material area and mass conserved, handles kept, energy never gained. A
-// part's garments are sized and remeshed side by side, with the results of one thread.
+// part's garments are sized and remeshed side by side, with the results of one thread. A view
+// run is the adaptive run until view.settle.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -56,7 +57,7 @@ namespace fs = std::filesystem;
 
 // Three hanging sheets of unequal size in one part, a metre apart in a row that a camera looks
 // down, so that each is at its own distance from it.
-std::string three_sheets_scene(const fs::path& dir) {
+std::string three_sheets_scene(const fs::path& dir, const std::string& view = R"({"v_back": 0.2, "v_out": 0.01})") {
   fs::create_directories(dir);
   std::string garments;
   const std::pair<const char*, double> sheets[] = {{"a", 0.3}, {"b", 0.5}, {"c", 0.8}};
@@ -72,7 +73,7 @@ std::string three_sheets_scene(const fs::path& dir) {
   const fs::path path = dir / "three-sheets.json";
   std::ofstream(path) << R"({"frame_time": 0.04, "substeps": 4, "remeshing": {"size": [0.02, 0.2]},
     "camera": {"fov": 40, "width": 640, "height": 360, "keys": [{"time": 0, "position": [0.2, 0.8, 2], "target": [0.2, 0.8, -0.2]}]},
-    "view": {"v_back": 0.2, "v_out": 0.01},
+    "view": )" << view << R"(,
     "garments": [)" << garments << "]}";
   return path.string();
 }
@@ -99,6 +100,44 @@ TEST(Adaptive, GarmentsRemeshedSideBySideAsOnOneThread) {
       }
     }
     EXPECT_GT(changes, 0) << sim_mode_name(mode);  // the meshes were remeshed, not merely moved
+  }
+  fs::remove_all(dir);
+}
+
+// Before view.settle a view run is the adaptive run bit for bit (no factor, no screen-space
+// bound: the drape forms on the adaptive mesh); from the first frame that starts at settle on,
+// the view coarsens. The camera sees the sheets' backs, all in frame; v_back is 1, so only the
+// screen-space floor coarsens: 40 px, with floor_in_frame on the faces turned away too, on
+// sheets 2 to 4 m away whose 2 cm edges span 6 to 13 px.
+TEST(Adaptive, AViewRunIsTheAdaptiveRunUntilSettle) {
+  const fs::path dir = fs::temp_directory_path() / ("vdcloth-settle-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  const std::string path = three_sheets_scene(dir, R"({"v_back": 1, "v_out": 0.01, "l_min": 40, "floor_in_frame": true, "settle": 0.08})");
+  Simulation adaptive(load_scene(path), SimOptions{SimMode::Adaptive, 1});
+  Simulation view(load_scene(path), SimOptions{SimMode::View, 1});
+  for (int frame = 1; frame <= 3; ++frame) {
+    const double start = view.time();
+    int at_start = 0;
+    for (std::size_t g = 0; g < 3; ++g) at_start += view.garment_mesh(g).num_faces();
+    adaptive.step_frame();
+    const FrameStats s = view.step_frame();
+    EXPECT_EQ(s.back_facing_faces + s.visible_faces, at_start) << "frame " << frame;
+    EXPECT_EQ(s.out_of_frame_faces, 0) << "frame " << frame;
+    std::size_t faces = 0, adaptive_faces = 0;
+    bool same = true;
+    for (std::size_t g = 0; g < 3; ++g) {
+      const Mesh& a = adaptive.garment_mesh(g);
+      const Mesh& v = view.garment_mesh(g);
+      faces += v.num_faces(), adaptive_faces += a.num_faces();
+      same = same && a.num_faces() == v.num_faces() && a.num_nodes() == v.num_nodes();
+      if (same)
+        for (NodeId n : a.nodes()) same = same && a.x(n) == v.x(n);
+    }
+    if (start + 1e-9 < 0.08) {
+      EXPECT_TRUE(same) << "frame " << frame << ", starting at " << start << " s, before settle";
+    } else {
+      EXPECT_FALSE(same) << "frame " << frame;
+      EXPECT_LT(faces, adaptive_faces) << "frame " << frame;
+    }
   }
   fs::remove_all(dir);
 }

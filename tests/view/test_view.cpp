@@ -150,6 +150,53 @@ TEST(ViewSizing, EqTwoCoarsensTheShapeButNotTheMotionAndWaitsForTheDrape) {
   }
 }
 
+// Before `settle` the view changes no sizing at all: a sheet in plain view 5 m below the camera
+// keeps 1 mm and 1 m edges that the screen-space bounds hold to 4 and 10 px (4 * 5 / f and
+// 10 * 5 / f metres, f = 360 / tan(20 deg)) after it, and no face counts as standing for folds
+// (2 cm folds span 0.02 f / 5 = 3.96 px there, under the 4 px floor: weighted after settle).
+TEST(ViewSizing, BeforeSettleNeitherFactorsNorScreenSpaceBoundsChangeTheSizing) {
+  Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
+  Camera lens = front_camera();
+  lens.up = Vec3(0, 0, -1);
+  const CameraPath path(lens, {{0.0, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from above
+  ViewParams p;
+  p.settle = 0.4;
+  p.l_min = 4;
+  p.l_max = 10;
+  const double f = 360 / std::tan(20 * M_PI / 180);
+  const std::vector<Mat2> no_motion(static_cast<std::size_t>(m.face_capacity()), Mat2::Zero());
+  auto finest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[1]); };
+  auto coarsest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[0]); };
+  const Mat2 fine = Mat2::Identity() / (0.001 * 0.001), coarse = Mat2::Identity();
+  for (double t : {0.2, 0.4}) {
+    const bool settling = t < p.settle;
+    ViewSizing view(path, p, t, 0.04);
+    view.evaluate(m);
+    EXPECT_EQ(view.counts().visible, 2) << "t = " << t;
+    auto& sizing = m.face_attrs().get_or_add<Mat2>("test_sizing", Mat2::Zero());
+    for (FaceId face : m.faces()) sizing[face] = fine;
+    view.modify(m, no_motion, sizing);
+    for (FaceId face : m.faces()) {
+      EXPECT_EQ(view.factors()[static_cast<std::size_t>(face.idx)], 1.0);
+      if (settling) {
+        EXPECT_EQ(sizing[face], fine);
+        EXPECT_EQ(view.fold_coarsening(m, face, sizing[face]), 0.0);
+      } else {
+        EXPECT_NEAR(finest_edge(sizing[face]), 4 * 5 / f, 1e-6);
+        EXPECT_GT(view.fold_coarsening(m, face, sizing[face]), 1.0);
+      }
+    }
+    for (FaceId face : m.faces()) sizing[face] = coarse;
+    view.modify(m, no_motion, sizing);
+    for (FaceId face : m.faces()) {
+      if (settling)
+        EXPECT_EQ(sizing[face], coarse);
+      else
+        EXPECT_NEAR(coarsest_edge(sizing[face]), 10 * 5 / f, 1e-6);
+    }
+  }
+}
+
 // With occlusion, a hidden face is no finer than a seen one beside it: the screen-space floor
 // l_min bounds it too (4 px at 5 m: 4 * 5 / f metres, f = 360 / tan(20 deg)), but l_max does not
 // refine it (1 m edges stay 1 m where a seen face is held to 10 px, 10 * 5 / f).
