@@ -24,6 +24,17 @@ std::array<Vec3, 3> tri(const Vec3& p, bool flipped = false, double r = 0.01) {
 
 FaceView view_of(const Camera& c, const std::array<Vec3, 3>& t, const ViewParams& p) { return face_view(Frustum(c), t[0], t[1], t[2], p); }
 
+// front_camera() 5 m above a sheet in the x-z plane (outer side +y), looking straight down.
+CameraPath from_above() {
+  Camera lens = front_camera();
+  lens.up = Vec3(0, 0, -1);
+  return CameraPath(lens, {{0.0, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), false}});
+}
+
+// The shortest and the longest edge a sizing tensor asks for.
+double finest_edge(const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[1]); }
+double coarsest_edge(const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[0]); }
+
 TEST(ViewFactor, FaceInFrameFacingTheCameraGetsOne) {
   ViewParams p;
   FaceView v = view_of(front_camera(), tri(Vec3(0.2, -0.3, 0)), p);
@@ -156,17 +167,13 @@ TEST(ViewSizing, EqTwoCoarsensTheShapeButNotTheMotionAndWaitsForTheDrape) {
 // (2 cm folds span 0.02 f / 5 = 3.96 px there, under the 4 px floor: weighted after settle).
 TEST(ViewSizing, BeforeSettleNeitherFactorsNorScreenSpaceBoundsChangeTheSizing) {
   Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
-  Camera lens = front_camera();
-  lens.up = Vec3(0, 0, -1);
-  const CameraPath path(lens, {{0.0, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from above
+  const CameraPath path = from_above();
   ViewParams p;
   p.settle = 0.4;
   p.l_min = 4;
   p.l_max = 10;
   const double f = 360 / std::tan(20 * M_PI / 180);
   const std::vector<Mat2> no_motion(static_cast<std::size_t>(m.face_capacity()), Mat2::Zero());
-  auto finest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[1]); };
-  auto coarsest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[0]); };
   const Mat2 fine = Mat2::Identity() / (0.001 * 0.001), coarse = Mat2::Identity();
   for (double t : {0.2, 0.4}) {
     const bool settling = t < p.settle;
@@ -202,9 +209,7 @@ TEST(ViewSizing, BeforeSettleNeitherFactorsNorScreenSpaceBoundsChangeTheSizing) 
 // refine it (1 m edges stay 1 m where a seen face is held to 10 px, 10 * 5 / f).
 TEST(ViewSizing, HiddenFacesKeepTheScreenSpaceFloorButNotTheCeiling) {
   Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
-  Camera lens = front_camera();
-  lens.up = Vec3(0, 0, -1);
-  const CameraPath path(lens, {{0.0, Vec3(0.1, 5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from above
+  const CameraPath path = from_above();
   ViewParams p;
   p.occlusion = true;
   p.v_occluded = 1;  // the floor alone
@@ -217,8 +222,6 @@ TEST(ViewSizing, HiddenFacesKeepTheScreenSpaceFloorButNotTheCeiling) {
   const std::vector<DepthImage> open = occlusion_images(window, [&](DepthImage&, double) {}, p);
   const double f = 360 / std::tan(20 * M_PI / 180);
   const std::vector<Mat2> no_motion(static_cast<std::size_t>(m.face_capacity()), Mat2::Zero());
-  auto finest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[1]); };
-  auto coarsest_edge = [](const Mat2& t) { return 1 / std::sqrt(Eigen::SelfAdjointEigenSolver<Mat2>(t).eigenvalues()[0]); };
   for (const bool hidden : {true, false}) {
     ViewSizing view(path, p, 0.0, 0.04);
     view.evaluate(m, hidden ? &hiding : &open);
