@@ -781,6 +781,20 @@ TEST_F(CliTest, RunWritesTheCameraOfEveryFrame) {
   EXPECT_EQ(out_.str().find("to look at it"), std::string::npos) << "no camera, nothing to draw through";
 }
 
+// A view run whose scene settles says which frames it sizes as the adaptive run does: with
+// settle 0.1 s and 0.04 s frames, frames 1 to 3 (starting at 0, 0.04 and 0.08 s); an adaptive
+// run, or a view run without settle, says nothing of it.
+TEST_F(CliTest, AViewRunSaysWhichFramesItLeavesToTheAdaptiveSizing) {
+  const std::string settles = scene("", kCutCamera + std::string(R"("view": {"settle": 0.1}, )"));
+  const std::string said = "sized as in adaptive mode up to frame 3 (view.settle";
+  ASSERT_EQ(run({"run", settles, "--out", out_dir(), "--frames", "1", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
+  EXPECT_NE((out_.str() + err_.str()).find(said), std::string::npos) << out_.str() << err_.str();
+  ASSERT_EQ(run({"run", settles, "--out", out_dir(), "--frames", "1", "--threads", "1", "--mode", "adaptive"}), kExitOk) << err_.str();
+  EXPECT_EQ((out_.str() + err_.str()).find("sized as in adaptive mode"), std::string::npos) << out_.str() << err_.str();
+  ASSERT_EQ(run({"run", scene("", kCutCamera), "--out", out_dir(), "--frames", "1", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
+  EXPECT_EQ((out_.str() + err_.str()).find("sized as in adaptive mode"), std::string::npos) << out_.str() << err_.str();
+}
+
 TEST_F(CliTest, FidelityOfARunAgainstItselfIsPerfectInEveryShot) {
   const std::string path = scene(", \"handles\": [{\"uv\": [[0, 1], [1, 1]]}]", kCutCamera);
   ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "4", "--threads", "1"}), kExitOk) << err_.str();
