@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -180,7 +179,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
         threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
         dir = args.out.empty() ? "out/" + scene.name : args.out;
         frames = scene.frames;
-        if (args.mode == SimMode::View) settle_frames = scene.view.settle / scene.frame_time;
+        if (args.mode == SimMode::View) settle_frames = scene.view.settle_frames(scene.frame_time);
         progress.checkpoint_every = args.checkpoint_every;
         progress.perturbation = args.perturbation;
         if (args.checkpoint_every > 0 || args.resume || processes > 1) {
@@ -271,8 +270,7 @@ int run_command(const RunArgs& args, std::ostream& out, std::ostream& err, bool 
   if (args.perturbation.resolution != 0) say << ", resolution perturbed by " << number_text(args.perturbation.resolution);
   if (resume) say << ", resumed at frame " << first;
   if (prerolls) say << ", " << preroll_frames << " frames of pre-roll first";
-  if (first < settle_frames - 1e-6)
-    say << ", sized as in adaptive mode up to frame " << std::ceil(settle_frames - 1e-6) << " (view.settle: the drape forms first)";
+  if (first < settle_frames) say << ", sized as in adaptive mode up to frame " << settle_frames << " (view.settle: the drape forms first)";
   say << std::endl;
 
   auto t0 = std::chrono::steady_clock::now();

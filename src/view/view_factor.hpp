@@ -4,6 +4,8 @@
 // anticipation (eq. 4) over the camera's future, and silhouette resampling across edges where
 // the factor jumps.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -36,6 +38,11 @@ struct ViewParams {
   double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling
   int samples_per_frame = 4;          // camera samples per frame over the anticipation window
   double settle = 0;                  // s: before this time the view changes no sizing (the drape forms as in adaptive)
+  // Whether a frame starting at `time` is still sized as in adaptive mode (frame start times
+  // are sums of frame_time, hence the nanosecond), and how many frames from the shot's start
+  // are (a count held as a double: settle may be any length).
+  bool settling(double time) const { return time + 1e-9 < settle; }
+  double settle_frames(double frame_time) const { return std::max(0.0, std::ceil((settle - 1e-9) / frame_time)); }
   // A face turned away from the camera takes v_back only where something hides it: its corners
   // and centre all behind a depth image of the bodies and garments (otherwise it is the inside
   // of a garment in plain view, and counts as facing the camera). false: the seed's rule.

@@ -72,7 +72,7 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
   if (occluders != nullptr && occluders->empty()) occluders = nullptr;
   if (occluders != nullptr && occluders->size() != window.cameras.size())
     throw std::logic_error("ViewSizing::evaluate: occlusion images of another window");
-  const bool settling = time_ + 1e-9 < params_.settle;  // frame times are sums of frame_time
+  const bool settling = params_.settling(time_);
   std::vector<FaceId> faces;
   for (FaceId f : mesh.faces()) faces.push_back(f);
   const auto n = static_cast<int64_t>(faces.size());
