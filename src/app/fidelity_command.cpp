@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kFidelityHelp =
-    "usage: vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [--floor PERTURBED_REFERENCE_DIR] [--every N]\n"
+    "usage: vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [--floor PERTURBED_REFERENCE_DIR ...] [--every N]\n"
     "                        [--scale S] [--out DIR] [--overlap-margin X] [--min-margin X] [--detail X] [--popping X]\n"
     "\n"
     "Measures how like REFERENCE_DIR (an adaptive run, say) RUN_DIR (a view run of the same scene)\n"
@@ -40,7 +40,10 @@ const char* kFidelityHelp =
     "--perturb 1e-6`: gravity one part in a million stronger). `vdcloth run --perturb-resolution E`\n"
     "perturbs the discretisation instead (every edge may be 1 + E times as long): as a floor it\n"
     "says how far a change of the adaptive run's own resolution moves the shot (more, the larger\n"
-    "E), to set a view run's departure beside.\n"
+    "E), to set a view run's departure beside. One perturbed run is one sample of what chaos does\n"
+    "(karate's gravity twins at 1e-6, -1e-6 and 2e-6 give overlap means of 0.965 to 0.976); with\n"
+    "--floor given several times the floor is the mean of the floor runs' means and the mean of\n"
+    "their minima, what one perturbed run is expected to give.\n"
     "\n"
     "Writes OUT/fidelity.csv (one row a frame), OUT/fidelity_garments.csv (one row a garment a\n"
     "frame: the overlap of that garment's own pixels, to tell which one departs) and\n"
@@ -58,7 +61,7 @@ const char* kFidelityHelp =
     "\n"
     "options:\n"
     "  --floor DIR           the reference run made again with `vdcloth run --perturb 1e-6` or\n"
-    "                        `--perturb-resolution 0.01`\n"
+    "                        `--perturb-resolution 0.01`; again for each further floor run\n"
     "  --every N             every Nth frame the runs have in common (default: 1, all)\n"
     "  --scale S             image size relative to the camera's, 0.05 to 4 (default: 0.5)\n"
     "  --out DIR             output directory (default: RUN_DIR/fidelity)\n"
@@ -68,7 +71,8 @@ const char* kFidelityHelp =
     "  --popping X           0 to 100 (default: 1.2)\n";
 
 struct FidelityArgs {
-  std::string scene, run, reference, floor, out;
+  std::string scene, run, reference, out;
+  std::vector<std::string> floors;
   int every = 1;
   double scale = 0.5;
   FidelityTargets targets;
@@ -82,7 +86,8 @@ FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
     if (a == "--floor" || a == "--out") {
       const std::string& dir = in.value();
       if (dir.empty()) throw UsageError(a + " needs a directory");
-      (a == "--floor" ? f.floor : f.out) = dir;
+      if (a == "--floor") f.floors.push_back(dir);
+      else f.out = dir;
     } else if (a == "--every") {
       f.every = parse_positive_int(a, in.value());
     } else if (a == "--scale") {
@@ -109,7 +114,7 @@ FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
   return f;
 }
 
-// The runs at one frame, drawn in the order run, reference, floor (when given).
+// The runs at one frame, drawn in the order run, reference, floor runs (when given).
 using DrawnRuns = std::vector<DrawnFrame>;
 
 DrawnRuns draw_runs(const Scene& scene, const std::vector<std::map<int, FrameFiles>>& runs, int frame, double scale) {
@@ -144,11 +149,20 @@ FrameFidelity measure(const DrawnRuns& now, const DrawnRuns* before, double pixe
     m.popping_run = popping(0);
     m.popping_reference = popping(1);
   }
-  if (now.size() > 2) {
-    m.floor_overlap = compare_renders(now[2].pixels, now[2].cloth, now[1].pixels, now[1].cloth).cloth_iou;
-    m.detail_floor = detail(2);
-    if (before) m.popping_floor = popping(2);
+  // The floor runs: each one's overlap, their means of overlap, detail and popping.
+  const std::size_t floors = now.size() - 2;
+  if (floors == 0) return m;
+  double overlap = 0, detail_sum = 0, popping_sum = 0;
+  for (std::size_t k = 2; k < now.size(); ++k) {
+    m.floor_overlaps.push_back(compare_renders(now[k].pixels, now[k].cloth, now[1].pixels, now[1].cloth).cloth_iou);
+    overlap += m.floor_overlaps.back();
+    detail_sum += detail(k);
+    if (before) popping_sum += popping(k);
   }
+  const auto n = static_cast<double>(floors);  // x / 1 is x: one floor run's values as they are
+  m.floor_overlap = overlap / n;
+  m.detail_floor = detail_sum / n;
+  if (before) m.popping_floor = popping_sum / n;
   return m;
 }
 
@@ -174,10 +188,18 @@ std::vector<GarmentFrame> measure_garments(const DrawnRuns& now) {
     g.pixels_reference = c.pixels_b;
     g.pixels_either = c.either;
     g.overlap = c.iou;
-    if (now.size() > 2) {
-      const MeshOverlap floor = compare_mesh(now[2].pixels, mesh_named(now[2], name), now[1].pixels, reference);
-      g.floor_pixels_either = floor.either;
-      g.floor_overlap = floor.iou;
+    if (now.size() > 2) {  // pooled over the floor runs: their pixels in both over those in either
+      int both = 0;
+      double iou = 1;
+      for (std::size_t k = 2; k < now.size(); ++k) {
+        const MeshOverlap floor = compare_mesh(now[k].pixels, mesh_named(now[k], name), now[1].pixels, reference);
+        g.floor_pixels_either += floor.either;
+        both += floor.both;
+        iou = floor.iou;
+      }
+      // One floor run: its own IoU (as before several were possible); several: pooled (1, alike,
+      // where none shows the garment).
+      g.floor_overlap = now.size() == 3 ? iou : g.floor_pixels_either > 0 ? static_cast<double>(both) / g.floor_pixels_either : 1.0;
     }
     out.push_back(g);
   }
@@ -198,14 +220,22 @@ std::string joined(const std::vector<std::string>& parts, const std::string& bet
   return s;
 }
 
+// One cell holding a value for each floor run, ';' between them.
+std::string cells(const std::vector<double>& xs) {
+  std::vector<std::string> parts;
+  for (double x : xs) parts.push_back(cell(x));
+  return joined(parts, ";");
+}
+
 const char* kFramesHeader =
     "frame,time,shot,cloth_pixels_run,cloth_pixels_reference,overlap,floor_overlap,detail_run,detail_reference,detail_floor,"
-    "popping_run,popping_reference,popping_floor\n";
+    "popping_run,popping_reference,popping_floor,floor_overlaps\n";
 
 void write_frame_row(std::ostream& csv, const FrameFidelity& m) {
   csv << m.frame << "," << cell(m.time) << "," << m.shot << "," << m.cloth_pixels_run << "," << m.cloth_pixels_reference << ","
       << cell(m.overlap) << "," << cell(m.floor_overlap) << "," << cell(m.detail_run) << "," << cell(m.detail_reference) << ","
-      << cell(m.detail_floor) << "," << cell(m.popping_run) << "," << cell(m.popping_reference) << "," << cell(m.popping_floor) << "\n";
+      << cell(m.detail_floor) << "," << cell(m.popping_run) << "," << cell(m.popping_reference) << "," << cell(m.popping_floor) << ","
+      << cells(m.floor_overlaps) << "\n";
 }
 
 const char* kGarmentsHeader = "frame,shot,garment,pixels_run,pixels_reference,overlap,floor_overlap\n";
@@ -232,7 +262,8 @@ std::string garments_line(const std::vector<GarmentFidelity>& garments) {
 
 const char* kShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
-    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio\n";
+    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio,"
+    "floors,floor_overlap_means,floor_overlap_mins\n";
 
 void write_shot_row(std::ostream& csv, const ShotFidelity& s) {
   csv << (s.shot < 0 ? "all" : std::to_string(s.shot)) << "," << s.first_frame << "," << s.last_frame << "," << s.frames << ","
@@ -240,7 +271,8 @@ void write_shot_row(std::ostream& csv, const ShotFidelity& s) {
       << cell(s.detail_run_mean) << "," << cell(s.detail_reference_mean) << "," << cell(s.detail_ratio) << "," << s.popping_pairs << ","
       << cell(s.popping_run_mean) << "," << cell(s.popping_reference_mean) << "," << cell(s.popping_ratio) << ","
       << (s.pass() ? "pass" : "fail") << "," << joined(s.failed, ";") << "," << cell(s.detail_floor_ratio) << ","
-      << cell(s.popping_floor_ratio) << "\n";
+      << cell(s.popping_floor_ratio) << "," << s.floor_overlap_means.size() << "," << cells(s.floor_overlap_means) << ","
+      << cells(s.floor_overlap_mins) << "\n";
 }
 
 std::string progress_line(const FrameFidelity& m) {
@@ -252,6 +284,17 @@ std::string progress_line(const FrameFidelity& m) {
   return o.str();
 }
 
+// With several floor runs, e.g. ", mean of 3 floor runs, their means 0.965 to 0.976"; nothing
+// with one.
+std::string floor_runs(const ShotFidelity& s) {
+  if (s.floor_overlap_means.size() < 2) return "";
+  const auto [low, high] = std::minmax_element(s.floor_overlap_means.begin(), s.floor_overlap_means.end());
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(3) << ", mean of " << s.floor_overlap_means.size() << " floor runs, their means " << *low << " to "
+    << *high;
+  return o.str();
+}
+
 // e.g. "shot 2 (frames 75-149): overlap 0.952 mean / 0.930 min (floor 0.968 / 0.941), detail 97%
 // of reference (floor 99%), popping 1.05x (floor 1.01x): pass"
 std::string verdict_line(const ShotFidelity& s) {
@@ -259,7 +302,7 @@ std::string verdict_line(const ShotFidelity& s) {
   o << std::fixed << (s.shot < 0 ? std::string("all") : "shot " + std::to_string(s.shot)) << " (frames " << s.first_frame << "-"
     << s.last_frame << "): overlap " << std::setprecision(3) << s.overlap_mean << " mean / " << s.overlap_min << " min";
   if (std::isnan(s.floor_overlap_mean)) o << " (no floor)";
-  else o << " (floor " << s.floor_overlap_mean << " / " << s.floor_overlap_min << ")";
+  else o << " (floor " << s.floor_overlap_mean << " / " << s.floor_overlap_min << floor_runs(s) << ")";
   o << ", detail ";
   if (std::isinf(s.detail_ratio)) o << "where the reference has none";
   else o << std::setprecision(0) << 100 * s.detail_ratio << "% of reference";
@@ -285,7 +328,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
   const Scene scene = load_scene(f.scene);
   if (!scene.camera) throw InputError(f.scene, "camera", "the scene has no camera to measure through");
   std::vector<std::string> dirs{f.run, f.reference};
-  if (!f.floor.empty()) dirs.push_back(f.floor);
+  dirs.insert(dirs.end(), f.floors.begin(), f.floors.end());
   std::vector<std::map<int, FrameFiles>> runs;
   std::vector<const std::map<int, FrameFiles>*> listed;
   for (const std::string& dir : dirs) runs.push_back(read_frame_files(dir));
@@ -348,7 +391,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
     if (!garments.empty()) out << "vdcloth fidelity: " << garments_line(garments) << "\n";
     for (const ShotFidelity& s : shots) out << "vdcloth fidelity: " << verdict_line(s) << "\n";
     out << "vdcloth fidelity: " << record.size() << " frame(s) of " << f.run << " against " << f.reference;
-    if (!f.floor.empty()) out << " (floor " << f.floor << ")";
+    if (!f.floors.empty()) out << " (floor " << joined(f.floors, ", ") << ")";
     out << "; " << f.out << "/fidelity.csv, " << f.out << "/fidelity_garments.csv, " << f.out << "/fidelity_shots.csv\n";
     return pass ? kExitOk : kExitSimulationFailed;
   } catch (const std::exception&) {  // nothing half-written stays behind, whatever stopped it

@@ -32,6 +32,19 @@ struct PairedSums {
   double ratio() const { return count > 0 ? ratio_of_means(mean(), reference_mean()) : kNotMeasured; }
 };
 
+// A frame's floor overlaps, one a floor run: the list, or the one floor run's, or none.
+std::vector<double> floor_overlaps_of(const FrameFidelity& f) {
+  if (!f.floor_overlaps.empty()) return f.floor_overlaps;
+  if (std::isnan(f.floor_overlap)) return {};
+  return {f.floor_overlap};
+}
+
+double mean_of(const std::vector<double>& xs) {
+  double sum = 0;
+  for (double x : xs) sum += x;
+  return sum / static_cast<double>(xs.size());
+}
+
 ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames, const FidelityTargets& targets) {
   ShotFidelity s;
   s.shot = shot;
@@ -39,19 +52,27 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
   s.first_frame = frames.front()->frame;
   s.last_frame = frames.front()->frame;
   s.overlap_min = std::numeric_limits<double>::infinity();
-  double overlap_sum = 0, floor_sum = 0, floor_min = std::numeric_limits<double>::infinity();
+  double overlap_sum = 0;
   double detail_run = 0, detail_reference = 0;
   PairedSums popping, detail_floor, popping_floor;
-  int floors = 0;
+  // Each floor run's sum, minimum and count of frames, in the order given.
+  std::vector<double> floor_sums, floor_mins;
+  std::vector<int> floor_counts;
   for (const FrameFidelity* f : frames) {
     s.first_frame = std::min(s.first_frame, f->frame);
     s.last_frame = std::max(s.last_frame, f->frame);
     overlap_sum += f->overlap;
     s.overlap_min = std::min(s.overlap_min, f->overlap);
-    if (!std::isnan(f->floor_overlap)) {
-      ++floors;
-      floor_sum += f->floor_overlap;
-      floor_min = std::min(floor_min, f->floor_overlap);
+    const std::vector<double> floors = floor_overlaps_of(*f);
+    if (floors.size() > floor_sums.size()) {
+      floor_sums.resize(floors.size(), 0.0);
+      floor_mins.resize(floors.size(), std::numeric_limits<double>::infinity());
+      floor_counts.resize(floors.size(), 0);
+    }
+    for (std::size_t k = 0; k < floors.size(); ++k) {
+      floor_sums[k] += floors[k];
+      floor_mins[k] = std::min(floor_mins[k], floors[k]);
+      ++floor_counts[k];
     }
     detail_run += f->detail_run;
     detail_reference += f->detail_reference;
@@ -65,9 +86,13 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
   s.detail_run_mean = detail_run / s.frames;
   s.detail_reference_mean = detail_reference / s.frames;
   s.detail_ratio = ratio_of_means(s.detail_run_mean, s.detail_reference_mean);
-  if (floors > 0) {
-    s.floor_overlap_mean = floor_sum / floors;
-    s.floor_overlap_min = floor_min;
+  for (std::size_t k = 0; k < floor_sums.size(); ++k) {
+    s.floor_overlap_means.push_back(floor_sums[k] / floor_counts[k]);
+    s.floor_overlap_mins.push_back(floor_mins[k]);
+  }
+  if (!s.floor_overlap_means.empty()) {
+    s.floor_overlap_mean = mean_of(s.floor_overlap_means);
+    s.floor_overlap_min = mean_of(s.floor_overlap_mins);
     if (s.overlap_mean < s.floor_overlap_mean - targets.overlap_margin) s.failed.push_back("overlap mean");
     if (s.overlap_min < s.floor_overlap_min - targets.min_margin) s.failed.push_back("overlap min");
   }

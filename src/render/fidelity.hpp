@@ -23,8 +23,9 @@ inline constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
 // focal_pixels() times the render's scale.
 double wrinkle_detail(const RenderedFrame& frame, const std::vector<char>& cloth, double pixels_per_metre_at_unit_depth);
 
-// One measured frame. Floor values are kNotMeasured without a floor run; popping is kNotMeasured
-// on the first frame of a shot and where the frame before was not written by every run.
+// One measured frame. Floor values are kNotMeasured without a floor run, and the means over the
+// floor runs with several; popping is kNotMeasured on the first frame of a shot and where the
+// frame before was not written by every run.
 struct FrameFidelity {
   int frame = 0;
   double time = 0;
@@ -32,6 +33,9 @@ struct FrameFidelity {
   int cloth_pixels_run = 0, cloth_pixels_reference = 0;
   double overlap = 1;                    // cloth silhouette IoU, run against reference
   double floor_overlap = kNotMeasured;   // the same, floor run against reference
+  // Each floor run's overlap, in the order given (a record with floor_overlap alone counts as one
+  // floor run).
+  std::vector<double> floor_overlaps;
   double detail_run = 0, detail_reference = 0, detail_floor = kNotMeasured;  // wrinkle_detail, degrees
   double popping_run = kNotMeasured, popping_reference = kNotMeasured, popping_floor = kNotMeasured;  // 0 to 255
 };
@@ -49,7 +53,10 @@ struct ShotFidelity {
   int shot = -1;  // -1: the whole run
   int first_frame = 0, last_frame = 0, frames = 0;
   double overlap_mean = 0, overlap_min = 0;
+  // The floor: the mean of the floor runs' overlap means and the mean of their minima (with
+  // several, what one perturbed run is expected to give, where one alone is one sample of it).
   double floor_overlap_mean = kNotMeasured, floor_overlap_min = kNotMeasured;
+  std::vector<double> floor_overlap_means, floor_overlap_mins;  // each floor run's, in order
   double detail_run_mean = 0, detail_reference_mean = 0;
   double detail_ratio = 1;  // detail_run_mean / detail_reference_mean: 1 for 0/0, +infinity for x/0
   int popping_pairs = 0;    // frame pairs with popping measured in both runs
@@ -79,8 +86,10 @@ struct GarmentFrame {
   int pixels_run = 0, pixels_reference = 0;
   int pixels_either = 0;                // showing it in the run or the reference
   double overlap = 1;                   // IoU of the garment's pixels, run against reference
-  int floor_pixels_either = 0;          // showing it in the floor run or the reference
-  double floor_overlap = kNotMeasured;  // the same, floor run against reference
+  // The same for the floor run against the reference; with several floor runs, summed over
+  // them (pixels either) and pooled (their pixels in both over their pixels in either).
+  int floor_pixels_either = 0;
+  double floor_overlap = kNotMeasured;
 };
 
 // A garment over the measured frames: the pixels showing it in both runs over those showing it

@@ -728,11 +728,12 @@ std::string first_line(const fs::path& path) {
 
 const std::string kFidelityFramesHeader =
     "frame,time,shot,cloth_pixels_run,cloth_pixels_reference,overlap,floor_overlap,detail_run,detail_reference,detail_floor,"
-    "popping_run,popping_reference,popping_floor";
+    "popping_run,popping_reference,popping_floor,floor_overlaps";
 const std::string kFidelityGarmentsHeader = "frame,shot,garment,pixels_run,pixels_reference,overlap,floor_overlap";
 const std::string kFidelityShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
-    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio";
+    "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio,"
+    "floors,floor_overlap_means,floor_overlap_mins";
 
 // A hanging sheet seen from above and in front, with a cut to another view at 0.07 s: frames 0
 // and 1 are shot 0, frames 2 to 4 shot 1.
@@ -951,6 +952,32 @@ TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHan
   EXPECT_EQ(shots[1].at("shot"), "all");
   EXPECT_EQ(shots[1].at("verdict"), "fail");
   EXPECT_EQ(shots[1].at("failed"), "overlap mean;overlap min");
+  EXPECT_EQ(shots[1].at("floors"), "1");
+  EXPECT_EQ(shots[1].at("floor_overlap_means"), "1");
+  // Two floor runs, the unmoved run (overlap 1) and the moved one (31 / 41): the floor is their
+  // mean, (1 + 31 / 41) / 2 = 0.878049, at every frame and over the run, its minimum the mean of
+  // theirs; a's floor pooled over both, (480 + 15 x 24) / (480 + 25 x 24) = 0.778. With margins
+  // of 0.125 the run's 0.756 passes.
+  const fs::path two = dir_ / "two";
+  EXPECT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--floor", out_dir(), "--floor", moved.string(), "--scale", "1",
+                 "--overlap-margin", "0.125", "--min-margin", "0.125", "--out", two.string()}),
+            kExitOk)
+      << out_.str() << err_.str();
+  EXPECT_NE(out_.str().find("overlap 0.756 mean / 0.756 min (floor 0.878 / 0.878, mean of 2 floor runs, their means 0.756 to 1.000)"),
+            std::string::npos)
+      << out_.str();
+  EXPECT_NE(out_.str().find("lowest first: a 0.600 (floor 0.778), b 1.000 (floor 1.000)\n"), std::string::npos) << out_.str();
+  for (const auto& row : csv_rows(two / "fidelity.csv")) {
+    EXPECT_NEAR(std::stod(row.at("floor_overlap")), (1 + 31.0 / 41.0) / 2, 1e-6) << row.at("frame");
+    EXPECT_EQ(row.at("floor_overlaps"), "1;0.756098") << row.at("frame");
+  }
+  const auto two_shots = csv_rows(two / "fidelity_shots.csv");
+  ASSERT_EQ(two_shots.size(), 2u);
+  EXPECT_EQ(two_shots[1].at("verdict"), "pass");
+  EXPECT_EQ(two_shots[1].at("floors"), "2");
+  EXPECT_EQ(two_shots[1].at("floor_overlap_means"), "1;0.756098");
+  EXPECT_EQ(two_shots[1].at("floor_overlap_mins"), "1;0.756098");
+  EXPECT_NEAR(std::stod(two_shots[1].at("floor_overlap_min")), (1 + 31.0 / 41.0) / 2, 1e-6);
 }
 
 TEST_F(CliTest, FidelityBadInputsExitTwoAndWriteNothing) {

@@ -172,6 +172,50 @@ TEST(FidelitySummary, ShotsAndTheWholeRunAreSummedAndJudged) {
   EXPECT_NEAR(s[2].popping_floor_ratio, 0.875, 1e-12);
 }
 
+// Two floor runs, by hand: over shot 0 the first gives 0.97, 0.96, 0.95 (mean 0.96, min 0.95),
+// the second 0.99, 0.92, 0.93 (mean 2.84 / 3, min 0.92); the floor is the mean of their means,
+// 0.953333, and of their minima, 0.935. The run's 0.90 mean and 0.85 minimum fail against 0.02
+// and 0.05 below those, and pass with margins of 0.06 and 0.09. Shot 1 and the whole run
+// likewise; one floor run given as a list of one is that run, as before.
+TEST(FidelitySummary, SeveralFloorRunsGiveTheMeanOfTheirMeansAndOfTheirMinima) {
+  std::vector<FrameFidelity> frames = two_shots(true);
+  const std::vector<std::vector<double>> floors{{0.97, 0.99}, {0.96, 0.92}, {0.95, 0.93}, {0.99, 0.97}, {0.98, 0.96}};
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    frames[k].floor_overlaps = floors[k];
+    frames[k].floor_overlap = 0.5 * (floors[k][0] + floors[k][1]);
+  }
+  const std::vector<ShotFidelity> s = summarise_shots(frames, FidelityTargets{});
+  ASSERT_EQ(s.size(), 3u);
+  ASSERT_EQ(s[0].floor_overlap_means.size(), 2u);
+  EXPECT_NEAR(s[0].floor_overlap_means[0], 0.96, 1e-12);
+  EXPECT_NEAR(s[0].floor_overlap_means[1], 2.84 / 3, 1e-12);
+  EXPECT_EQ(s[0].floor_overlap_mins, (std::vector<double>{0.95, 0.92}));
+  EXPECT_NEAR(s[0].floor_overlap_mean, 0.5 * (0.96 + 2.84 / 3), 1e-12);
+  EXPECT_NEAR(s[0].floor_overlap_min, 0.935, 1e-12);
+  EXPECT_EQ(s[0].failed, (std::vector<std::string>{"overlap mean", "overlap min", "detail"}));
+  // Shot 1: 0.99, 0.98 and 0.97, 0.96: means 0.985 and 0.965, minima 0.98 and 0.96.
+  EXPECT_NEAR(s[1].floor_overlap_mean, 0.975, 1e-12);
+  EXPECT_NEAR(s[1].floor_overlap_min, 0.97, 1e-12);
+  // The whole run: means 4.85 / 5 and 4.77 / 5, minima 0.95 and 0.92.
+  EXPECT_NEAR(s[2].floor_overlap_mean, 0.5 * (0.97 + 0.954), 1e-12);
+  EXPECT_NEAR(s[2].floor_overlap_min, 0.935, 1e-12);
+  FidelityTargets wide;
+  wide.min_margin = 0.09;      // 0.85 >= 0.935 - 0.09
+  wide.overlap_margin = 0.06;  // 0.90 >= 0.953333 - 0.06
+  wide.detail = 0.75;          // 0.8 >= 0.75
+  EXPECT_TRUE(summarise_shots(frames, wide)[0].pass()) << summarise_shots(frames, wide)[0].failed.size();
+  // One floor run given as a list of one: as floor_overlap alone.
+  std::vector<FrameFidelity> single = two_shots(true);
+  for (FrameFidelity& f : single) f.floor_overlaps = {f.floor_overlap};
+  const std::vector<ShotFidelity> one = summarise_shots(single, FidelityTargets{});
+  const std::vector<ShotFidelity> plain = summarise_shots(two_shots(true), FidelityTargets{});
+  for (std::size_t k = 0; k < one.size(); ++k) {
+    EXPECT_EQ(one[k].floor_overlap_mean, plain[k].floor_overlap_mean) << k;
+    EXPECT_EQ(one[k].floor_overlap_min, plain[k].floor_overlap_min) << k;
+    EXPECT_EQ(plain[k].floor_overlap_means.size(), 1u) << k;
+  }
+}
+
 TEST(FidelitySummary, TargetsMoveTheVerdict) {
   FidelityTargets lenient;
   lenient.overlap_margin = 0.0625;  // 0.90 >= 0.96 - 0.0625
