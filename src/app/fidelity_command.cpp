@@ -188,18 +188,14 @@ std::vector<GarmentFrame> measure_garments(const DrawnRuns& now) {
     g.pixels_reference = c.pixels_b;
     g.pixels_either = c.either;
     g.overlap = c.iou;
-    if (now.size() > 2) {  // pooled over the floor runs: their pixels in both over those in either
+    if (now.size() > 2) {  // pooled over the floor runs as compare_mesh pools pixels: both over either (1 for none)
       int both = 0;
-      double iou = 1;
       for (std::size_t k = 2; k < now.size(); ++k) {
         const MeshOverlap floor = compare_mesh(now[k].pixels, mesh_named(now[k], name), now[1].pixels, reference);
         g.floor_pixels_either += floor.either;
         both += floor.both;
-        iou = floor.iou;
       }
-      // One floor run: its own IoU (as before several were possible); several: pooled (1, alike,
-      // where none shows the garment).
-      g.floor_overlap = now.size() == 3 ? iou : g.floor_pixels_either > 0 ? static_cast<double>(both) / g.floor_pixels_either : 1.0;
+      g.floor_overlap = g.floor_pixels_either > 0 ? static_cast<double>(both) / g.floor_pixels_either : 1.0;
     }
     out.push_back(g);
   }
