@@ -102,7 +102,9 @@ SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec
           compression_metric(dx.transpose() * dx - Mat2::Identity(), s2, p.refine_compression)};
 }
 
-Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p) { return clamp_sizing(c.velocity, p); }
+Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p, bool compression) {
+  return clamp_sizing(compression ? tensor_max(c.velocity, c.compression) : c.velocity, p);
+}
 
 namespace {
 bool held(const Mesh& mesh, FaceId f, const std::vector<ObstaclePlane>& planes) {
@@ -143,7 +145,9 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
   for (FaceId f : mesh.faces()) {
     const SizingCriteria c = sizing_criteria(mesh, f, normals, p);
     face[f] = clamp_sizing(largest_criterion(c, mesh, f, planes), p);
-    if (modifier) motion[static_cast<std::size_t>(f.idx)] = motion_sizing(c, p);
+    if (modifier)
+      motion[static_cast<std::size_t>(f.idx)] =
+          motion_sizing(c, p, modifier->keeps_compression() && (planes.empty() || !held(mesh, f, planes)));
   }
   if (modifier) {
     const std::vector<Mat2> before = face.raw();

@@ -55,6 +55,9 @@ class FaceSizingModifier {
   // compute_sizing records the larger of this and the coarsening against the physical tensor.
   // 0 (the default): nothing known beyond the physical tensor.
   virtual double fold_coarsening(const Mesh& /*mesh*/, FaceId /*f*/, const Mat2& /*sizing*/) const { return 0.0; }
+  // Whether the motion tensors it is given include the compression criterion (where the face
+  // is not held, as in the physical tensor), not velocity alone.
+  virtual bool keeps_compression() const { return false; }
 };
 
 // The criteria of one face (Narain et al. 2012, section 5), unclamped: curvature resolves the
@@ -63,9 +66,10 @@ struct SizingCriteria {
   Mat2 curvature, velocity, compression;
 };
 SizingCriteria sizing_criteria(const Mesh& mesh, FaceId f, const std::vector<Vec3>& node_normals, const SizingParams& p);
-// The clamped tensor of the motion criterion alone, velocity. (Compression is not in it: a face
-// coarsened below its compression criterion gives up compression instead, membrane.hpp.)
-Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p);
+// The clamped tensor of the motion criterion: velocity, and with `compression` the larger of it
+// and the compression criterion. (Without it, a face coarsened below its compression criterion
+// gives up compression instead, membrane.hpp.)
+Mat2 motion_sizing(const SizingCriteria& c, const SizingParams& p, bool compression = false);
 
 // The physical tensor of one face before clamping: the largest of the criteria, but for
 // compression where all three nodes are held (ObstaclePlane::held: no room for the buckles it

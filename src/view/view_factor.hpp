@@ -76,6 +76,11 @@ struct ViewParams {
   // being gathered further with this strain factor (membrane.hpp; its stiffness the square),
   // where the compression law alone lets it collapse at almost no cost (an extension). 0: off.
   double gathering = 0;
+  // The motion criterion that eq. 2 never scales a coarse face below includes Narain's
+  // compression criterion (where the face is not pressed between two surfaces), not velocity
+  // alone: cloth the camera turned away from keeps the resolution of the buckles it is about to
+  // form, and the visible cloth beside it gathers as in the adaptive run (an extension).
+  bool keep_compression = false;
   // Eq. 4 moves each face along its nodes' velocities to each sample's time (the cloth's own
   // motion anticipated to first order) rather than holding it where it is.
   bool motion_anticipation = true;

@@ -3,8 +3,9 @@
 // sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
 // face's view factor (eqs. 3 and 4, each face moved along its nodes' velocities over eq. 4's
 // window unless motion_anticipation is off, then silhouette resampling); modify() scales the physical
-// tensors by v^2 (eq. 2) but never below the velocity criterion (what the camera does not see
-// still has to move as the seen cloth does), and, on faces visible now, bounds them in screen
+// tensors by v^2 (eq. 2) but never below the velocity criterion, with keep_compression also
+// Narain's compression criterion (what the camera does not see still has to move and gather as
+// the seen cloth does), and, on faces visible now, bounds them in screen
 // space so that no edge is asked to be shorter than l_min pixels (eqs. 5 to 8; with occlusion on
 // every face in frame, hidden or turned away too) nor, when l_max
 // is set, longer than l_max pixels (an extension: the visible cloth keeps the degrees of
@@ -62,6 +63,7 @@ class ViewSizing final : public FaceSizingModifier {
   // the face's final tensor lets it be (metric_ratio against fold_length^-2 I), weighted by
   // fold_weight; 0 where it is not weighted (out of frame, near the camera, fold_length 0).
   double fold_coarsening(const Mesh& mesh, FaceId f, const Mat2& sizing) const override;
+  bool keeps_compression() const override { return params_.keep_compression; }
   const std::vector<double>& factors() const { return factor_; }  // by face index
   const std::vector<ViewReason>& reasons() const { return reason_; }  // by face index
   const ViewCounts& counts() const { return counts_; }

@@ -82,15 +82,17 @@ TEST(Sizing, VelocityCriterionMatchesTheGradient) {
 // A modifier that scales every face tensor, remembering the motion tensors it was given.
 class ScalingModifier final : public FaceSizingModifier {
  public:
-  explicit ScalingModifier(double s) : scale_(s) {}
+  explicit ScalingModifier(double s, bool keeps_compression = false) : scale_(s), keeps_compression_(keeps_compression) {}
   void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face) const override {
     motion_ = motion;
     for (FaceId f : mesh.faces()) face[f] = scale_ * face[f];
   }
+  bool keeps_compression() const override { return keeps_compression_; }
   mutable std::vector<Mat2> motion_;
 
  private:
   double scale_;
+  bool keeps_compression_;
 };
 
 TEST(Sizing, ModifiersGetTheMotionCriteriaAndTheCoarseningTheyCauseIsRecorded) {
@@ -116,9 +118,9 @@ TEST(Sizing, ModifiersGetTheMotionCriteriaAndTheCoarseningTheyCauseIsRecorded) {
     EXPECT_NEAR(face[f](1, 1), 25, 1e-9);
     EXPECT_NEAR(coarsening[f], 4.0, 1e-9);
   }
-  // Compression is not a motion criterion: a sheet at rest squeezed to 90% along u asks for
-  // finer faces by its compression criterion, but the modifier is given only the clamped
-  // velocity criterion, the coarsest size.
+  // Compression is not a motion criterion (unless the modifier keeps it, below): a sheet at rest
+  // squeezed to 90% along u asks for finer faces by its compression criterion, but the modifier
+  // is given only the clamped velocity criterion, the coarsest size.
   Mesh squeezed = build_mesh(make_grid(1, 1, 4, 4));
   for (NodeId n : squeezed.nodes()) squeezed.x(n).x() *= 0.9;
   const std::vector<Vec3> up(static_cast<std::size_t>(squeezed.node_capacity()), Vec3(0, 0, 1));
@@ -279,6 +281,34 @@ TEST(Sizing, CompressionIsNotRefinedWhereTheClothIsHeld) {
     EXPECT_LT((face_sizing_unclamped(squeezed, f, up, p, planes) - expected).norm(), 1e-9 * (1 + expected.norm())) << f.idx;
   }
   EXPECT_GE(touching, 1);
+}
+
+// A modifier that keeps the compression criterion is given it in the motion tensors of the
+// squeezed sheet at rest (velocity asks nothing: the clamped compression criterion itself, edges
+// under 1 cm along u), but not where every node is held, as the physical tensor is not; a node
+// let go gives its faces the criterion back.
+TEST(Sizing, AModifierKeepingCompressionGetsItInTheMotionTensorsWhereTheClothIsFree) {
+  SizingParams p;
+  Mesh squeezed = build_mesh(make_grid(1, 1, 4, 4));
+  for (NodeId n : squeezed.nodes()) squeezed.x(n).x() *= 0.9;
+  const std::vector<Vec3> up(static_cast<std::size_t>(squeezed.node_capacity()), Vec3(0, 1, 0));  // flat in y = 0
+  ScalingModifier keeping(0.25, true);
+  compute_sizing(squeezed, p, &keeping);
+  for (FaceId f : squeezed.faces()) {
+    const Mat2 compression = clamp_sizing(sizing_criteria(squeezed, f, up, p).compression, p);
+    EXPECT_GT(compression(0, 0), 100.0);
+    EXPECT_LT((keeping.motion_[static_cast<std::size_t>(f.idx)] - compression).norm(), 1e-9 * compression.norm());
+  }
+  std::vector<ObstaclePlane> planes(static_cast<std::size_t>(squeezed.node_capacity()), ObstaclePlane{Vec3(0, -0.002, 0), Vec3(0, 1, 0), true});
+  const NodeId freed = *squeezed.nodes().begin();
+  planes[static_cast<std::size_t>(freed.idx)].held = false;
+  compute_sizing(squeezed, p, &keeping, planes);
+  for (FaceId f : squeezed.faces()) {
+    bool has = false;
+    for (int k = 0; k < 3; ++k) has |= squeezed.face_node(f, k) == freed;
+    const Mat2 expected = has ? clamp_sizing(sizing_criteria(squeezed, f, up, p).compression, p) : Mat2(25 * Mat2::Identity());
+    EXPECT_LT((keeping.motion_[static_cast<std::size_t>(f.idx)] - expected).norm(), 1e-9 * expected.norm()) << f.idx;
+  }
 }
 
 }  // namespace
