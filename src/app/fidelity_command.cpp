@@ -27,8 +27,9 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kFidelityHelp =
-    "usage: vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [--floor PERTURBED_REFERENCE_DIR ...] [--every N]\n"
-    "                        [--scale S] [--out DIR] [--overlap-margin X] [--min-margin X] [--detail X] [--popping X]\n"
+    "usage: vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [--floor PERTURBED_REFERENCE_DIR ...]\n"
+    "                        [--sample PERTURBED_RUN_DIR ...] [--every N] [--scale S] [--out DIR]\n"
+    "                        [--overlap-margin X] [--min-margin X] [--detail X] [--popping X]\n"
     "\n"
     "Measures how like REFERENCE_DIR (an adaptive run, say) RUN_DIR (a view run of the same scene)\n"
     "looks through the scene's camera, at the frames all the runs given have meshes for: the overlap\n"
@@ -43,7 +44,9 @@ const char* kFidelityHelp =
     "E), to set a view run's departure beside. One perturbed run is one sample of what chaos does\n"
     "(karate's gravity twins at 1e-6, -1e-6 and 2e-6 give overlap means of 0.965 to 0.976); with\n"
     "--floor given several times the floor is the mean of the floor runs' means and the mean of\n"
-    "their minima, what one perturbed run is expected to give.\n"
+    "their minima, what one perturbed run is expected to give. RUN_DIR is one sample too: with\n"
+    "--sample (RUN_DIR made again with --perturb, as many times as given) the judged figures are\n"
+    "the mean of the runs' overlap means, of their minima, and their mean detail and popping.\n"
     "\n"
     "Writes OUT/fidelity.csv (one row a frame), OUT/fidelity_garments.csv (one row a garment a\n"
     "frame: the overlap of that garment's own pixels, to tell which one departs) and\n"
@@ -62,6 +65,8 @@ const char* kFidelityHelp =
     "options:\n"
     "  --floor DIR           the reference run made again with `vdcloth run --perturb 1e-6` or\n"
     "                        `--perturb-resolution 0.01`; again for each further floor run\n"
+    "  --sample DIR          RUN_DIR's method made again with `vdcloth run --perturb 1e-6` (another\n"
+    "                        value each time); again for each further sample\n"
     "  --every N             every Nth frame the runs have in common (default: 1, all)\n"
     "  --scale S             image size relative to the camera's, 0.05 to 4 (default: 0.5)\n"
     "  --out DIR             output directory (default: RUN_DIR/fidelity)\n"
@@ -72,7 +77,7 @@ const char* kFidelityHelp =
 
 struct FidelityArgs {
   std::string scene, run, reference, out;
-  std::vector<std::string> floors;
+  std::vector<std::string> floors, samples;
   int every = 1;
   double scale = 0.5;
   FidelityTargets targets;
@@ -83,10 +88,11 @@ FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
   std::vector<std::string> positional;
   for (ArgumentReader in(args); !in.done();) {
     const std::string& a = in.next();
-    if (a == "--floor" || a == "--out") {
+    if (a == "--floor" || a == "--sample" || a == "--out") {
       const std::string& dir = in.value();
       if (dir.empty()) throw UsageError(a + " needs a directory");
       if (a == "--floor") f.floors.push_back(dir);
+      else if (a == "--sample") f.samples.push_back(dir);
       else f.out = dir;
     } else if (a == "--every") {
       f.every = parse_positive_int(a, in.value());
@@ -114,7 +120,7 @@ FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
   return f;
 }
 
-// The runs at one frame, drawn in the order run, reference, floor runs (when given).
+// The runs at one frame, drawn in the order run, reference, floor runs, samples (when given).
 using DrawnRuns = std::vector<DrawnFrame>;
 
 DrawnRuns draw_runs(const Scene& scene, const std::vector<std::map<int, FrameFiles>>& runs, int frame, double scale) {
@@ -129,40 +135,58 @@ int shot_of(const Scene& scene, int frame) {
   return static_cast<int>(scene.camera->cuts_in(-std::numeric_limits<double>::infinity(), frame * scene.frame_time).size());
 }
 
-// The measures of one frame. `before`: the runs drawn at the frame before, null when that frame
-// is in another shot or not written by every run.
-FrameFidelity measure(const DrawnRuns& now, const DrawnRuns* before, double pixels_per_metre_at_unit_depth) {
+// Drawn run k's overlap with the reference (drawn run 1), its wrinkle detail, and its popping
+// from the frame before: compare_renders' cloth silhouette IoU and mean pixel change on cloth.
+double overlap_of(const DrawnRuns& now, std::size_t k) {
+  return compare_renders(now[k].pixels, now[k].cloth, now[1].pixels, now[1].cloth).cloth_iou;
+}
+double detail_of(const DrawnRuns& now, std::size_t k, double pixels_per_metre_at_unit_depth) {
+  return wrinkle_detail(now[k].pixels, now[k].cloth, pixels_per_metre_at_unit_depth);
+}
+double popping_of(const DrawnRuns& before, const DrawnRuns& now, std::size_t k) {
+  return compare_renders(before[k].pixels, before[k].cloth, now[k].pixels, now[k].cloth).mean_abs_diff;
+}
+
+// The measures of one frame, the floor runs drawn at 2 to 2 + floors - 1. `before`: the runs
+// drawn at the frame before, null when that frame is in another shot or not written by every run.
+FrameFidelity measure(const DrawnRuns& now, const DrawnRuns* before, std::size_t floors, double pixels_per_metre_at_unit_depth) {
   FrameFidelity m;
-  // Overlap: the cloth silhouettes' intersection over union (compare_renders).
   const RenderComparison c = compare_renders(now[0].pixels, now[0].cloth, now[1].pixels, now[1].cloth);
   m.cloth_pixels_run = c.cloth_pixels_a;
   m.cloth_pixels_reference = c.cloth_pixels_b;
   m.overlap = c.cloth_iou;
-  auto detail = [&](std::size_t k) { return wrinkle_detail(now[k].pixels, now[k].cloth, pixels_per_metre_at_unit_depth); };
-  // Popping: the mean absolute pixel change on cloth from the frame before (compare_renders).
-  auto popping = [&](std::size_t k) {
-    return compare_renders((*before)[k].pixels, (*before)[k].cloth, now[k].pixels, now[k].cloth).mean_abs_diff;
-  };
-  m.detail_run = detail(0);
-  m.detail_reference = detail(1);
+  m.detail_run = detail_of(now, 0, pixels_per_metre_at_unit_depth);
+  m.detail_reference = detail_of(now, 1, pixels_per_metre_at_unit_depth);
   if (before) {
-    m.popping_run = popping(0);
-    m.popping_reference = popping(1);
+    m.popping_run = popping_of(*before, now, 0);
+    m.popping_reference = popping_of(*before, now, 1);
   }
   // The floor runs: each one's overlap, their means of overlap, detail and popping.
-  const std::size_t floors = now.size() - 2;
   if (floors == 0) return m;
   double overlap = 0, detail_sum = 0, popping_sum = 0;
-  for (std::size_t k = 2; k < now.size(); ++k) {
-    m.floor_overlaps.push_back(compare_renders(now[k].pixels, now[k].cloth, now[1].pixels, now[1].cloth).cloth_iou);
+  for (std::size_t k = 2; k < 2 + floors; ++k) {
+    m.floor_overlaps.push_back(overlap_of(now, k));
     overlap += m.floor_overlaps.back();
-    detail_sum += detail(k);
-    if (before) popping_sum += popping(k);
+    detail_sum += detail_of(now, k, pixels_per_metre_at_unit_depth);
+    if (before) popping_sum += popping_of(*before, now, k);
   }
   const auto n = static_cast<double>(floors);  // x / 1 is x: one floor run's values as they are
   m.floor_overlap = overlap / n;
   m.detail_floor = detail_sum / n;
   if (before) m.popping_floor = popping_sum / n;
+  return m;
+}
+
+// The same frame with drawn run k (a sample) in the run's place: its overlap, pixels, detail and
+// popping; the reference's and the floor's as measured.
+FrameFidelity measure_sample(const FrameFidelity& run, const DrawnRuns& now, const DrawnRuns* before, std::size_t k,
+                             double pixels_per_metre_at_unit_depth) {
+  FrameFidelity m = run;
+  const RenderComparison c = compare_renders(now[k].pixels, now[k].cloth, now[1].pixels, now[1].cloth);
+  m.cloth_pixels_run = c.cloth_pixels_a;
+  m.overlap = c.cloth_iou;
+  m.detail_run = detail_of(now, k, pixels_per_metre_at_unit_depth);
+  if (before) m.popping_run = popping_of(*before, now, k);
   return m;
 }
 
@@ -172,8 +196,9 @@ int32_t mesh_named(const DrawnFrame& frame, const std::string& name) {
   return at == frame.names.end() ? -1 : static_cast<int32_t>(at - frame.names.begin());
 }
 
-// Each garment of the run or the reference on its own (compare_mesh): which one departs.
-std::vector<GarmentFrame> measure_garments(const DrawnRuns& now) {
+// Each garment of the run or the reference on its own (compare_mesh): which one departs; the
+// floor runs drawn at 2 to 2 + floors - 1.
+std::vector<GarmentFrame> measure_garments(const DrawnRuns& now, std::size_t floors) {
   std::set<std::string> names;  // in name order
   for (std::size_t k = 0; k < 2; ++k)
     for (std::size_t m = 0; m < now[k].names.size(); ++m)
@@ -188,9 +213,9 @@ std::vector<GarmentFrame> measure_garments(const DrawnRuns& now) {
     g.pixels_reference = c.pixels_b;
     g.pixels_either = c.either;
     g.overlap = c.iou;
-    if (now.size() > 2) {  // pooled over the floor runs as compare_mesh pools pixels: both over either (1 for none)
+    if (floors > 0) {  // pooled over the floor runs as compare_mesh pools pixels: both over either (1 for none)
       int both = 0;
-      for (std::size_t k = 2; k < now.size(); ++k) {
+      for (std::size_t k = 2; k < 2 + floors; ++k) {
         const MeshOverlap floor = compare_mesh(now[k].pixels, mesh_named(now[k], name), now[1].pixels, reference);
         g.floor_pixels_either += floor.either;
         both += floor.both;
@@ -225,13 +250,16 @@ std::string cells(const std::vector<double>& xs) {
 
 const char* kFramesHeader =
     "frame,time,shot,cloth_pixels_run,cloth_pixels_reference,overlap,floor_overlap,detail_run,detail_reference,detail_floor,"
-    "popping_run,popping_reference,popping_floor,floor_overlaps\n";
+    "popping_run,popping_reference,popping_floor,floor_overlaps,sample_overlaps\n";
 
-void write_frame_row(std::ostream& csv, const FrameFidelity& m) {
+// `samples`: the frame measured with each sample in the run's place.
+void write_frame_row(std::ostream& csv, const FrameFidelity& m, const std::vector<FrameFidelity>& samples) {
+  std::vector<double> sample_overlaps;
+  for (const FrameFidelity& s : samples) sample_overlaps.push_back(s.overlap);
   csv << m.frame << "," << cell(m.time) << "," << m.shot << "," << m.cloth_pixels_run << "," << m.cloth_pixels_reference << ","
       << cell(m.overlap) << "," << cell(m.floor_overlap) << "," << cell(m.detail_run) << "," << cell(m.detail_reference) << ","
       << cell(m.detail_floor) << "," << cell(m.popping_run) << "," << cell(m.popping_reference) << "," << cell(m.popping_floor) << ","
-      << cells(m.floor_overlaps) << "\n";
+      << cells(m.floor_overlaps) << "," << cells(sample_overlaps) << "\n";
 }
 
 const char* kGarmentsHeader = "frame,shot,garment,pixels_run,pixels_reference,overlap,floor_overlap\n";
@@ -259,7 +287,7 @@ std::string garments_line(const std::vector<GarmentFidelity>& garments) {
 const char* kShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
     "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio,"
-    "floors,floor_overlap_means,floor_overlap_mins\n";
+    "floors,floor_overlap_means,floor_overlap_mins,samples,sample_overlap_means,sample_overlap_mins\n";
 
 void write_shot_row(std::ostream& csv, const ShotFidelity& s) {
   csv << (s.shot < 0 ? "all" : std::to_string(s.shot)) << "," << s.first_frame << "," << s.last_frame << "," << s.frames << ","
@@ -268,7 +296,8 @@ void write_shot_row(std::ostream& csv, const ShotFidelity& s) {
       << cell(s.popping_run_mean) << "," << cell(s.popping_reference_mean) << "," << cell(s.popping_ratio) << ","
       << (s.pass() ? "pass" : "fail") << "," << joined(s.failed, ";") << "," << cell(s.detail_floor_ratio) << ","
       << cell(s.popping_floor_ratio) << "," << s.floor_overlap_means.size() << "," << cells(s.floor_overlap_means) << ","
-      << cells(s.floor_overlap_mins) << "\n";
+      << cells(s.floor_overlap_mins) << "," << std::max<std::size_t>(1, s.sample_overlap_means.size()) << ","
+      << cells(s.sample_overlap_means) << "," << cells(s.sample_overlap_mins) << "\n";
 }
 
 std::string progress_line(const FrameFidelity& m) {
@@ -291,12 +320,22 @@ std::string floor_runs(const ShotFidelity& s) {
   return o.str();
 }
 
+// With several runs judged, e.g. " (mean of 4 runs, their means 0.949 to 0.955)"; nothing with one.
+std::string sample_runs(const ShotFidelity& s) {
+  if (s.sample_overlap_means.size() < 2) return "";
+  const auto [low, high] = std::minmax_element(s.sample_overlap_means.begin(), s.sample_overlap_means.end());
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(3) << " (mean of " << s.sample_overlap_means.size() << " runs, their means " << *low << " to "
+    << *high << ")";
+  return o.str();
+}
+
 // e.g. "shot 2 (frames 75-149): overlap 0.952 mean / 0.930 min (floor 0.968 / 0.941), detail 97%
 // of reference (floor 99%), popping 1.05x (floor 1.01x): pass"
 std::string verdict_line(const ShotFidelity& s) {
   std::ostringstream o;
   o << std::fixed << (s.shot < 0 ? std::string("all") : "shot " + std::to_string(s.shot)) << " (frames " << s.first_frame << "-"
-    << s.last_frame << "): overlap " << std::setprecision(3) << s.overlap_mean << " mean / " << s.overlap_min << " min";
+    << s.last_frame << "): overlap " << std::setprecision(3) << s.overlap_mean << " mean / " << s.overlap_min << " min" << sample_runs(s);
   if (std::isnan(s.floor_overlap_mean)) o << " (no floor)";
   else o << " (floor " << s.floor_overlap_mean << " / " << s.floor_overlap_min << floor_runs(s) << ")";
   o << ", detail ";
@@ -325,6 +364,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
   if (!scene.camera) throw InputError(f.scene, "camera", "the scene has no camera to measure through");
   std::vector<std::string> dirs{f.run, f.reference};
   dirs.insert(dirs.end(), f.floors.begin(), f.floors.end());
+  dirs.insert(dirs.end(), f.samples.begin(), f.samples.end());
   std::vector<std::map<int, FrameFiles>> runs;
   std::vector<const std::map<int, FrameFiles>*> listed;
   for (const std::string& dir : dirs) runs.push_back(read_frame_files(dir));
@@ -346,6 +386,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
     garments_csv.emplace(f.out + "/fidelity_garments.csv");
     garments_csv->stream() << kGarmentsHeader;
     std::vector<FrameFidelity> record;
+    std::vector<std::vector<FrameFidelity>> sample_records(f.samples.size());  // by sample
     std::vector<GarmentFrame> garment_record;
     // The runs at the last measured frame, kept as the frame before of the next one.
     std::optional<int> kept_frame;
@@ -356,12 +397,17 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
       const bool has_before = std::binary_search(common.begin(), common.end(), frame - 1) && shot_of(scene, frame - 1) == shot;
       DrawnRuns before;
       if (has_before) before = kept_frame == frame - 1 ? std::move(kept) : draw_runs(scene, runs, frame - 1, f.scale);
-      FrameFidelity m = measure(now, has_before ? &before : nullptr, pixels_per_metre);
+      FrameFidelity m = measure(now, has_before ? &before : nullptr, f.floors.size(), pixels_per_metre);
       m.frame = frame;
       m.time = frame * scene.frame_time;
       m.shot = shot;
-      write_frame_row(frames_csv->stream(), m);
-      for (GarmentFrame& g : measure_garments(now)) {
+      std::vector<FrameFidelity> samples;
+      for (std::size_t k = 0; k < f.samples.size(); ++k) {
+        samples.push_back(measure_sample(m, now, has_before ? &before : nullptr, 2 + f.floors.size() + k, pixels_per_metre));
+        sample_records[k].push_back(samples.back());
+      }
+      write_frame_row(frames_csv->stream(), m, samples);
+      for (GarmentFrame& g : measure_garments(now, f.floors.size())) {
         g.frame = frame;
         g.shot = shot;
         write_garment_row(garments_csv->stream(), g);
@@ -372,7 +418,9 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
       kept = std::move(now);
       kept_frame = frame;
     }
-    const std::vector<ShotFidelity> shots = summarise_shots(record, f.targets);
+    std::vector<std::vector<ShotFidelity>> runs_summed{summarise_shots(record, f.targets)};
+    for (const auto& sample : sample_records) runs_summed.push_back(summarise_shots(sample, f.targets));
+    const std::vector<ShotFidelity> shots = summarise_samples(runs_summed, f.targets);
     shots_csv.emplace(f.out + "/fidelity_shots.csv");
     shots_csv->stream() << kShotsHeader;
     bool pass = true;
@@ -388,6 +436,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
     for (const ShotFidelity& s : shots) out << "vdcloth fidelity: " << verdict_line(s) << "\n";
     out << "vdcloth fidelity: " << record.size() << " frame(s) of " << f.run << " against " << f.reference;
     if (!f.floors.empty()) out << " (floor " << joined(f.floors, ", ") << ")";
+    if (!f.samples.empty()) out << " (samples " << joined(f.samples, ", ") << ")";
     out << "; " << f.out << "/fidelity.csv, " << f.out << "/fidelity_garments.csv, " << f.out << "/fidelity_shots.csv\n";
     return pass ? kExitOk : kExitSimulationFailed;
   } catch (const std::exception&) {  // nothing half-written stays behind, whatever stopped it

@@ -45,6 +45,18 @@ double mean_of(const std::vector<double>& xs) {
   return sum / static_cast<double>(xs.size());
 }
 
+// The targets a summary misses, into s.failed; the overlap only against a floor, the popping
+// only where measured.
+void judge(ShotFidelity& s, const FidelityTargets& targets) {
+  s.failed.clear();
+  if (!std::isnan(s.floor_overlap_mean)) {
+    if (s.overlap_mean < s.floor_overlap_mean - targets.overlap_margin) s.failed.push_back("overlap mean");
+    if (s.overlap_min < s.floor_overlap_min - targets.min_margin) s.failed.push_back("overlap min");
+  }
+  if (s.detail_ratio < targets.detail) s.failed.push_back("detail");
+  if (!std::isnan(s.popping_ratio) && s.popping_ratio > targets.popping) s.failed.push_back("popping");
+}
+
 ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames, const FidelityTargets& targets) {
   ShotFidelity s;
   s.shot = shot;
@@ -93,17 +105,14 @@ ShotFidelity summarise(int shot, const std::vector<const FrameFidelity*>& frames
   if (!s.floor_overlap_means.empty()) {
     s.floor_overlap_mean = mean_of(s.floor_overlap_means);
     s.floor_overlap_min = mean_of(s.floor_overlap_mins);
-    if (s.overlap_mean < s.floor_overlap_mean - targets.overlap_margin) s.failed.push_back("overlap mean");
-    if (s.overlap_min < s.floor_overlap_min - targets.min_margin) s.failed.push_back("overlap min");
   }
-  if (s.detail_ratio < targets.detail) s.failed.push_back("detail");
   s.popping_pairs = popping.count;
   if (popping.count > 0) {
     s.popping_run_mean = popping.mean();
     s.popping_reference_mean = popping.reference_mean();
     s.popping_ratio = popping.ratio();
-    if (s.popping_ratio > targets.popping) s.failed.push_back("popping");
   }
+  judge(s, targets);
   return s;
 }
 
@@ -153,6 +162,33 @@ std::vector<ShotFidelity> summarise_shots(const std::vector<FrameFidelity>& fram
   for (const auto& [shot, members] : by_shot) summaries.push_back(summarise(shot, members, targets));
   if (!all.empty()) summaries.push_back(summarise(-1, all, targets));
   return summaries;
+}
+
+std::vector<ShotFidelity> summarise_samples(const std::vector<std::vector<ShotFidelity>>& runs, const FidelityTargets& targets) {
+  if (runs.size() < 2) return runs.empty() ? std::vector<ShotFidelity>{} : runs.front();
+  std::vector<ShotFidelity> out = runs.front();
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    ShotFidelity& s = out[k];
+    std::vector<double> details, poppings;
+    for (const auto& run : runs) {
+      if (run.size() != out.size() || run[k].shot != s.shot)
+        throw std::invalid_argument("summarise_samples: the runs' summaries are not of the same shots");
+      s.sample_overlap_means.push_back(run[k].overlap_mean);
+      s.sample_overlap_mins.push_back(run[k].overlap_min);
+      details.push_back(run[k].detail_run_mean);
+      poppings.push_back(run[k].popping_run_mean);
+    }
+    s.overlap_mean = mean_of(s.sample_overlap_means);
+    s.overlap_min = mean_of(s.sample_overlap_mins);
+    s.detail_run_mean = mean_of(details);
+    s.detail_ratio = ratio_of_means(s.detail_run_mean, s.detail_reference_mean);
+    if (s.popping_pairs > 0) {
+      s.popping_run_mean = mean_of(poppings);
+      s.popping_ratio = ratio_of_means(s.popping_run_mean, s.popping_reference_mean);
+    }
+    judge(s, targets);
+  }
+  return out;
 }
 
 std::vector<GarmentFidelity> summarise_garments(const std::vector<GarmentFrame>& frames) {

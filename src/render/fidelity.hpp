@@ -69,6 +69,9 @@ struct ShotFidelity {
   // judged; kNotMeasured without a floor.
   double detail_floor_ratio = kNotMeasured;
   double popping_floor_ratio = kNotMeasured;
+  // With several runs of the judged method (summarise_samples), each one's overlap mean and
+  // minimum, in order; the figures above are then their means. Empty for one run.
+  std::vector<double> sample_overlap_means, sample_overlap_mins;
   std::vector<std::string> failed;  // the targets missed: "overlap mean", "overlap min", "detail", "popping"
   bool pass() const { return failed.empty(); }
 };
@@ -76,6 +79,14 @@ struct ShotFidelity {
 // The record's frames summed up over each shot in shot order, then over the whole run (shot -1)
 // and judged against `targets`; overlap is judged only where floor overlaps were measured.
 std::vector<ShotFidelity> summarise_shots(const std::vector<FrameFidelity>& frames, const FidelityTargets& targets);
+
+// Several runs of the same method (the run and its twins perturbed below any meaning, against
+// the same reference and floor), each summed up by summarise_shots, as one judged sample of the
+// method: by shot, the mean of their overlap means and of their minima (as the floor is taken
+// over several floor runs), and their mean detail and popping over the reference's, judged
+// again. The reference's and the floor's figures are the first run's (the same in all). One run
+// is returned as it is.
+std::vector<ShotFidelity> summarise_samples(const std::vector<std::vector<ShotFidelity>>& runs, const FidelityTargets& targets);
 
 // One garment at one measured frame: its own silhouette (where it is the nearest surface)
 // against the reference's, to tell which garment of a scene departs.

@@ -728,12 +728,12 @@ std::string first_line(const fs::path& path) {
 
 const std::string kFidelityFramesHeader =
     "frame,time,shot,cloth_pixels_run,cloth_pixels_reference,overlap,floor_overlap,detail_run,detail_reference,detail_floor,"
-    "popping_run,popping_reference,popping_floor,floor_overlaps";
+    "popping_run,popping_reference,popping_floor,floor_overlaps,sample_overlaps";
 const std::string kFidelityGarmentsHeader = "frame,shot,garment,pixels_run,pixels_reference,overlap,floor_overlap";
 const std::string kFidelityShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
     "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio,"
-    "floors,floor_overlap_means,floor_overlap_mins";
+    "floors,floor_overlap_means,floor_overlap_mins,samples,sample_overlap_means,sample_overlap_mins";
 
 // A hanging sheet seen from above and in front, with a cut to another view at 0.07 s: frames 0
 // and 1 are shot 0, frames 2 to 4 shot 1.
@@ -978,6 +978,33 @@ TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHan
   EXPECT_EQ(two_shots[1].at("floor_overlap_means"), "1;0.756098");
   EXPECT_EQ(two_shots[1].at("floor_overlap_mins"), "1;0.756098");
   EXPECT_NEAR(std::stod(two_shots[1].at("floor_overlap_min")), (1 + 31.0 / 41.0) / 2, 1e-6);
+  EXPECT_EQ(two_shots[1].at("samples"), "1");
+  EXPECT_EQ(two_shots[1].at("sample_overlap_means"), "");
+  // The moved run judged with the unmoved one as a second sample of its method: the judged
+  // overlap is their mean, (31 / 41 + 1) / 2 = 0.878 at every frame, its minimum the mean of
+  // theirs, which passes against the one floor run (the moved one, 0.756) by default margins;
+  // the garments are the run's own.
+  const fs::path sampled = dir_ / "sampled";
+  EXPECT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--floor", moved.string(), "--sample", out_dir(), "--scale", "1", "--out",
+                 sampled.string()}),
+            kExitOk)
+      << out_.str() << err_.str();
+  EXPECT_NE(out_.str().find("overlap 0.878 mean / 0.878 min (mean of 2 runs, their means 0.756 to 1.000) (floor 0.756 / 0.756)"),
+            std::string::npos)
+      << out_.str();
+  EXPECT_NE(out_.str().find("lowest first: a 0.600 (floor 0.600), b 1.000 (floor 1.000)\n"), std::string::npos) << out_.str();
+  for (const auto& row : csv_rows(sampled / "fidelity.csv")) {
+    EXPECT_NEAR(std::stod(row.at("overlap")), 31.0 / 41.0, 1e-6) << row.at("frame");
+    EXPECT_EQ(row.at("sample_overlaps"), "1") << row.at("frame");
+  }
+  const auto sampled_shots = csv_rows(sampled / "fidelity_shots.csv");
+  ASSERT_EQ(sampled_shots.size(), 2u);
+  EXPECT_EQ(sampled_shots[1].at("verdict"), "pass");
+  EXPECT_NEAR(std::stod(sampled_shots[1].at("overlap_mean")), (1 + 31.0 / 41.0) / 2, 1e-6);
+  EXPECT_NEAR(std::stod(sampled_shots[1].at("overlap_min")), (1 + 31.0 / 41.0) / 2, 1e-6);
+  EXPECT_EQ(sampled_shots[1].at("samples"), "2");
+  EXPECT_EQ(sampled_shots[1].at("sample_overlap_means"), "0.756098;1");
+  EXPECT_EQ(sampled_shots[1].at("sample_overlap_mins"), "0.756098;1");
 }
 
 TEST_F(CliTest, FidelityBadInputsExitTwoAndWriteNothing) {
@@ -1001,6 +1028,9 @@ TEST_F(CliTest, FidelityBadInputsExitTwoAndWriteNothing) {
       {"missing run", {with_camera, nowhere, run_dir}, {"nowhere/frames", "no such directory"}},
       {"missing reference", {with_camera, run_dir, nowhere}, {"nowhere/frames"}},
       {"missing floor", {with_camera, run_dir, run_dir, "--floor", nowhere}, {"nowhere/frames"}},
+      {"missing sample", {with_camera, run_dir, run_dir, "--sample", nowhere}, {"nowhere/frames"}},
+      {"a sample without a frame in common", {with_camera, run_dir, run_dir, "--sample", (dir_ / "lonely").string()},
+       {"no frame in common with", "lonely"}},
       {"no frame in common", {with_camera, run_dir, (dir_ / "lonely").string()}, {"no frame in common with", "lonely"}},
       {"no camera", {no_camera, run_dir, run_dir}, {"bare.json", "camera", "no camera"}},
       {"missing scene", {(dir_ / "none.json").string(), run_dir, run_dir}, {"none.json"}},
@@ -1013,6 +1043,7 @@ TEST_F(CliTest, FidelityBadInputsExitTwoAndWriteNothing) {
       {"margin above 1", {with_camera, run_dir, run_dir, "--overlap-margin", "2"}, {"--overlap-margin", "0 to 1"}},
       {"margin not a number", {with_camera, run_dir, run_dir, "--min-margin", "nan"}, {"--min-margin", "'nan'"}},
       {"floor without a value", {with_camera, run_dir, run_dir, "--floor"}, {"--floor needs a value"}},
+      {"sample without a value", {with_camera, run_dir, run_dir, "--sample"}, {"--sample needs a value"}},
       {"unknown option", {with_camera, run_dir, run_dir, "--frobnicate"}, {"unknown option '--frobnicate'"}},
   };
   for (const Case& c : cases) {
@@ -1028,7 +1059,7 @@ TEST_F(CliTest, FidelityBadInputsExitTwoAndWriteNothing) {
     EXPECT_FALSE(fs::exists(damaged / "fidelity")) << c.what;
   }
   EXPECT_EQ(run({"fidelity", "--help"}), kExitOk);
-  for (const char* option : {"--floor", "--every", "--scale", "--out", "--overlap-margin", "--min-margin", "--detail", "--popping", "--perturb 1e-6"})
+  for (const char* option : {"--floor", "--sample", "--every", "--scale", "--out", "--overlap-margin", "--min-margin", "--detail", "--popping", "--perturb 1e-6"})
     EXPECT_NE(out_.str().find(option), std::string::npos) << option;
   EXPECT_EQ(run({"--help"}), kExitOk);
   EXPECT_NE(out_.str().find("vdcloth fidelity"), std::string::npos);

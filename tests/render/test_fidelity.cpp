@@ -216,6 +216,48 @@ TEST(FidelitySummary, SeveralFloorRunsGiveTheMeanOfTheirMeansAndOfTheirMinima) {
   }
 }
 
+// Two runs of the same method, by hand: the second has overlaps 0.97, 0.97, 0.96 | 0.99, 0.99
+// (shot 0 mean 0.966667, min 0.96), detail 2.5 at every frame of shot 0 and popping 4 and 3.
+// Shot 0 judged: overlap (0.90 + 0.966667) / 2 = 0.933333 (fails against 0.96 - 0.02), min
+// (0.85 + 0.96) / 2 = 0.905 (passes against 0.95 - 0.05), detail (2 + 2.5) / 2 / 2.5 = 0.9
+// (passes), popping ((3 + 5) / 2 + (4 + 3) / 2) / 2 / 4 = 0.9375. The reference's and the floor's
+// figures are unchanged; one run alone is returned as it is.
+TEST(FidelitySummary, SeveralRunsOfTheMethodAreJudgedByTheirMeans) {
+  const std::vector<FrameFidelity> first = two_shots(true);
+  std::vector<FrameFidelity> second = first;
+  const double overlap[] = {0.97, 0.97, 0.96, 0.99, 0.99}, popping[] = {kNotMeasured, 4, 3, kNotMeasured, 2};
+  for (std::size_t k = 0; k < second.size(); ++k) {
+    second[k].overlap = overlap[k];
+    second[k].popping_run = popping[k];
+    if (k < 3) second[k].detail_run = 2.5;
+  }
+  const FidelityTargets targets;
+  const std::vector<ShotFidelity> a = summarise_shots(first, targets), b = summarise_shots(second, targets);
+  const std::vector<ShotFidelity> s = summarise_samples({a, b}, targets);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_NEAR(s[0].overlap_mean, 0.5 * (0.90 + 2.90 / 3), 1e-12);
+  EXPECT_NEAR(s[0].overlap_min, 0.905, 1e-12);
+  EXPECT_NEAR(s[0].sample_overlap_means[1], 2.90 / 3, 1e-12);
+  EXPECT_EQ(s[0].sample_overlap_mins, (std::vector<double>{0.85, 0.96}));
+  EXPECT_NEAR(s[0].detail_ratio, 0.9, 1e-12);
+  EXPECT_NEAR(s[0].popping_ratio, 0.9375, 1e-12);
+  EXPECT_EQ(s[0].failed, (std::vector<std::string>{"overlap mean"}));
+  EXPECT_EQ(s[0].floor_overlap_mean, a[0].floor_overlap_mean);
+  EXPECT_EQ(s[0].detail_reference_mean, a[0].detail_reference_mean);
+  // Shot 1: overlap (0.98 + 0.99) / 2, popping (2 + 2) / 2 over 0: still where the reference has none.
+  EXPECT_NEAR(s[1].overlap_mean, 0.985, 1e-12);
+  EXPECT_EQ(s[1].popping_ratio, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(s[1].failed, (std::vector<std::string>{"popping"}));
+  const std::vector<ShotFidelity> one = summarise_samples({a}, targets);
+  ASSERT_EQ(one.size(), a.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(one[k].overlap_mean, a[k].overlap_mean);
+    EXPECT_EQ(one[k].failed, a[k].failed);
+    EXPECT_TRUE(one[k].sample_overlap_means.empty());
+  }
+  EXPECT_THROW(summarise_samples({a, {b[0]}}, targets), std::invalid_argument);
+}
+
 TEST(FidelitySummary, TargetsMoveTheVerdict) {
   FidelityTargets lenient;
   lenient.overlap_margin = 0.0625;  // 0.90 >= 0.96 - 0.0625
