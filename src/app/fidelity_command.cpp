@@ -147,20 +147,26 @@ double popping_of(const DrawnRuns& before, const DrawnRuns& now, std::size_t k) 
   return compare_renders(before[k].pixels, before[k].cloth, now[k].pixels, now[k].cloth).mean_abs_diff;
 }
 
-// The measures of one frame, the floor runs drawn at 2 to 2 + floors - 1. `before`: the runs
-// drawn at the frame before, null when that frame is in another shot or not written by every run.
-FrameFidelity measure(const DrawnRuns& now, const DrawnRuns* before, std::size_t floors, double pixels_per_metre_at_unit_depth) {
-  FrameFidelity m;
-  const RenderComparison c = compare_renders(now[0].pixels, now[0].cloth, now[1].pixels, now[1].cloth);
+// `run` with drawn run k in the run's place (0: the run itself, beyond the floors: a sample):
+// its overlap, cloth pixels (and the reference's), detail and popping; the rest as in `run`.
+FrameFidelity with_run_measured(const FrameFidelity& run, const DrawnRuns& now, const DrawnRuns* before, std::size_t k,
+                                double pixels_per_metre_at_unit_depth) {
+  FrameFidelity m = run;
+  const RenderComparison c = compare_renders(now[k].pixels, now[k].cloth, now[1].pixels, now[1].cloth);
   m.cloth_pixels_run = c.cloth_pixels_a;
   m.cloth_pixels_reference = c.cloth_pixels_b;
   m.overlap = c.cloth_iou;
-  m.detail_run = detail_of(now, 0, pixels_per_metre_at_unit_depth);
+  m.detail_run = detail_of(now, k, pixels_per_metre_at_unit_depth);
+  if (before) m.popping_run = popping_of(*before, now, k);
+  return m;
+}
+
+// The measures of one frame, the floor runs drawn at 2 to 2 + floors - 1. `before`: the runs
+// drawn at the frame before, null when that frame is in another shot or not written by every run.
+FrameFidelity measure(const DrawnRuns& now, const DrawnRuns* before, std::size_t floors, double pixels_per_metre_at_unit_depth) {
+  FrameFidelity m = with_run_measured(FrameFidelity{}, now, before, 0, pixels_per_metre_at_unit_depth);
   m.detail_reference = detail_of(now, 1, pixels_per_metre_at_unit_depth);
-  if (before) {
-    m.popping_run = popping_of(*before, now, 0);
-    m.popping_reference = popping_of(*before, now, 1);
-  }
+  if (before) m.popping_reference = popping_of(*before, now, 1);
   // The floor runs: each one's overlap, their means of overlap, detail and popping.
   if (floors == 0) return m;
   double overlap = 0, detail_sum = 0, popping_sum = 0;
@@ -174,19 +180,6 @@ FrameFidelity measure(const DrawnRuns& now, const DrawnRuns* before, std::size_t
   m.floor_overlap = overlap / n;
   m.detail_floor = detail_sum / n;
   if (before) m.popping_floor = popping_sum / n;
-  return m;
-}
-
-// The same frame with drawn run k (a sample) in the run's place: its overlap, pixels, detail and
-// popping; the reference's and the floor's as measured.
-FrameFidelity measure_sample(const FrameFidelity& run, const DrawnRuns& now, const DrawnRuns* before, std::size_t k,
-                             double pixels_per_metre_at_unit_depth) {
-  FrameFidelity m = run;
-  const RenderComparison c = compare_renders(now[k].pixels, now[k].cloth, now[1].pixels, now[1].cloth);
-  m.cloth_pixels_run = c.cloth_pixels_a;
-  m.overlap = c.cloth_iou;
-  m.detail_run = detail_of(now, k, pixels_per_metre_at_unit_depth);
-  if (before) m.popping_run = popping_of(*before, now, k);
   return m;
 }
 
@@ -403,7 +396,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
       m.shot = shot;
       std::vector<FrameFidelity> samples;
       for (std::size_t k = 0; k < f.samples.size(); ++k) {
-        samples.push_back(measure_sample(m, now, has_before ? &before : nullptr, 2 + f.floors.size() + k, pixels_per_metre));
+        samples.push_back(with_run_measured(m, now, has_before ? &before : nullptr, 2 + f.floors.size() + k, pixels_per_metre));
         sample_records[k].push_back(samples.back());
       }
       write_frame_row(frames_csv->stream(), m, samples);

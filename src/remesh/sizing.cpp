@@ -142,12 +142,13 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
   auto& face = mesh.face_attrs().get_or_add<Mat2>(kFaceSizingAttr, Mat2::Zero());
   const std::vector<Vec3> normals = node_normals(mesh);
   std::vector<Mat2> motion(modifier ? static_cast<std::size_t>(mesh.face_capacity()) : 0, Mat2::Zero());
+  const bool keeps_compression = modifier && modifier->keeps_compression();
   for (FaceId f : mesh.faces()) {
     const SizingCriteria c = sizing_criteria(mesh, f, normals, p);
     face[f] = clamp_sizing(largest_criterion(c, mesh, f, planes), p);
     if (modifier)
       motion[static_cast<std::size_t>(f.idx)] =
-          motion_sizing(c, p, modifier->keeps_compression() && (planes.empty() || !held(mesh, f, planes)));
+          motion_sizing(c, p, keeps_compression && (planes.empty() || !held(mesh, f, planes)));
   }
   if (modifier) {
     const std::vector<Mat2> before = face.raw();
