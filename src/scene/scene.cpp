@@ -602,7 +602,7 @@ CameraPath parse_camera(const JsonValue& j) {
 
 // The `view` block: parameters of view-dependent sizing.
 ViewParams parse_view(const JsonValue& j) {
-  j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "l_min", "l_max", "silhouette_threshold", "settle",
+  j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "linger", "l_min", "l_max", "silhouette_threshold", "settle",
                "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation", "defocus_scale",
                "motion_blur_scale", "occlusion", "v_occluded", "floor_in_frame", "fold_length", "fold_time", "gathering",
                "keep_compression"});
@@ -614,6 +614,7 @@ ViewParams parse_view(const JsonValue& j) {
   p.margin = j.positive_or("margin", p.margin);
   p.anticipation = j.non_negative_or("anticipation", p.anticipation);
   p.lead = j.non_negative_or("lead", p.lead);
+  p.linger = j.non_negative_or("linger", p.linger);
   p.l_min = j.non_negative_or("l_min", p.l_min);
   p.l_max = j.non_negative_or("l_max", p.l_max);
   if (p.l_max > 0 && p.l_max < p.l_min) j.at("l_max").fail("must be 0 (no ceiling) or at least l_min");

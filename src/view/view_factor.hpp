@@ -33,6 +33,11 @@ struct ViewParams {
   // frames: cloth to be seen within this time is at the resolution it will be seen at (weight
   // 1); the window's weights then fall over the `anticipation` frames after it (0: eq. 4)
   double lead = 0;
+  // frames: a face the camera stops needing coarsens over this time instead of at once, its
+  // factor falling by at most 1 / linger a frame from the one it had (eq. 4's ramp mirrored
+  // into the past): cloth turning away beside the seen cloth does not swap resolution with every
+  // turn (0: at once, as in the paper)
+  double linger = 0;
   double l_min = 4;                   // pixels: shortest visible edge on screen (0: no floor)
   double l_max = 0;                   // pixels: longest visible edge on screen (0: no ceiling)
   double silhouette_threshold = 0.5;  // factor jump across an edge that triggers resampling

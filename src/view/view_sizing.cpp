@@ -117,6 +117,15 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<DepthImage>* occlu
     counts_.defocused += reason_[at] == ViewReason::defocused;
     counts_.blurred += reason_[at] == ViewReason::motion_blurred;
   }
+  // Eq. 4's ramp mirrored into the past (an extension): the factor the face had last frame
+  // (the mesh's view_factor attribute, carried through remeshing) falls by at most 1 / linger.
+  if (params_.linger > 0 && !settling && mesh.face_attrs().has(kViewFactorAttr)) {
+    const auto& before = mesh.face_attrs().get<double>(kViewFactorAttr);
+    for (FaceId f : faces) {
+      const auto at = static_cast<std::size_t>(f.idx);
+      factor_[at] = std::max(factor_[at], before[f] - 1.0 / params_.linger);
+    }
+  }
   resample_silhouettes(mesh, factor_, params_.silhouette_threshold);
 }
 

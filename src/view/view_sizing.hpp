@@ -2,7 +2,8 @@
 // SCA 2014, section 3): the camera's modification of the physical
 // sizing field, plugged into compute_sizing as its FaceSizingModifier. evaluate() computes each
 // face's view factor (eqs. 3 and 4, each face moved along its nodes' velocities over eq. 4's
-// window unless motion_anticipation is off, then silhouette resampling); modify() scales the physical
+// window unless motion_anticipation is off; with linger no faster fall than 1 / linger a frame
+// from the factor the face had; then silhouette resampling); modify() scales the physical
 // tensors by v^2 (eq. 2) but never below the velocity criterion, with keep_compression also
 // Narain's compression criterion (what the camera does not see still has to move and gather as
 // the seen cloth does), and, on faces visible now, bounds them in screen
@@ -47,7 +48,8 @@ struct ViewCounts {
 class ViewSizing final : public FaceSizingModifier {
  public:
   ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads = 1);
-  // View factors of the mesh's faces at the current positions and time; `occluders`, when given
+  // View factors of the mesh's faces at the current positions and time (with linger, against
+  // the mesh's kViewFactorAttr from the frame before, when it has one); `occluders`, when given
   // and not empty, are occlusion_images() of the same window (the back-face rule looks).
   void evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders = nullptr);
   // On the mesh evaluate() saw: its factors, and its visible faces' screen-space floors.

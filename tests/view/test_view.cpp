@@ -161,6 +161,38 @@ TEST(ViewSizing, EqTwoCoarsensTheShapeButNotTheMotionAndWaitsForTheDrape) {
   }
 }
 
+// With `linger` 5, a face that turned away falls from the factor it had last frame (the mesh's
+// view_factor attribute) by at most 1/5 a frame: from 1 to 0.8, from 0.5 to 0.3, from 0.3 to
+// v_back 0.2 (not 0.1); without a factor from last frame, with linger 0, or while settling, the
+// factor is eq. 4's alone.
+TEST(ViewSizing, LingerLetsAFactorFallByOneOverLingerAFrame) {
+  Mesh m = build_mesh(make_grid(0.2, 0.2, 1, 1));  // in the x-z plane, outer side +y
+  Camera lens = front_camera();
+  lens.up = Vec3(0, 0, 1);
+  const CameraPath path(lens, {{0.0, Vec3(0.1, -5, -0.1), Vec3(0.1, 0, -0.1), false}});  // from below: turned away
+  ViewParams p;
+  p.linger = 5;
+  p.settle = 0.4;
+  auto factor_of = [&](const ViewParams& params, double t) {
+    ViewSizing view(path, params, t, 0.04);
+    view.evaluate(m);
+    const double v = view.factors()[static_cast<std::size_t>((*m.faces().begin()).idx)];
+    for (FaceId f : m.faces()) EXPECT_EQ(view.factors()[static_cast<std::size_t>(f.idx)], v);
+    return v;
+  };
+  EXPECT_EQ(factor_of(p, 1.0), p.v_back);  // no factor from last frame
+  auto& before = m.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
+  for (const auto& [had, now] : std::vector<std::pair<double, double>>{{1.0, 0.8}, {0.5, 0.3}, {0.3, 0.2}, {0.01, 0.2}}) {
+    for (FaceId f : m.faces()) before[f] = had;
+    EXPECT_NEAR(factor_of(p, 1.0), now, 1e-15) << "from " << had;
+  }
+  for (FaceId f : m.faces()) before[f] = 1.0;
+  EXPECT_EQ(factor_of(p, 0.2), 1.0);  // settling: every factor 1
+  ViewParams at_once = p;
+  at_once.linger = 0;
+  EXPECT_EQ(factor_of(at_once, 1.0), p.v_back);
+}
+
 // Before `settle` the view changes no sizing at all: a sheet in plain view 5 m below the camera
 // keeps 1 mm and 1 m edges that the screen-space bounds hold to 4 and 10 px (4 * 5 / f and
 // 10 * 5 / f metres, f = 360 / tan(20 deg)) after it, and no face counts as standing for folds
