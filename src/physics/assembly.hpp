@@ -24,6 +24,13 @@ struct StepParams {
   double damping = 0;                   // 1/s: force -damping m v
   double drag = 0;                      // N s/m^3: face force -drag A ((v - wind).n) n
   Vec3 wind = Vec3::Zero();             // m/s
+  // Coarse cloth's missing dissipation (an extension): a face whose compression is softened
+  // (a coarse face standing for folds it cannot form, membrane.hpp) takes stiffness-proportional
+  // damping -beta K v on its membrane, beta = coarse_damping h (1 - compression). Backward
+  // Euler damps every resolved mode as Rayleigh damping of beta = h would (zeta = omega h / 2
+  // for omega h << 1), the fine cloth's folds included; the coarse face has no such modes and
+  // would keep their energy in its swing. 0: off.
+  double coarse_damping = 0;
   int threads = 1;
 };
 

@@ -605,7 +605,7 @@ ViewParams parse_view(const JsonValue& j) {
   j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "linger", "l_min", "l_max", "silhouette_threshold", "settle",
                "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation", "defocus_scale",
                "motion_blur_scale", "occlusion", "v_occluded", "floor_in_frame", "fold_length", "fold_time", "gathering",
-               "keep_compression"});
+               "keep_compression", "coarse_damping"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -634,6 +634,8 @@ ViewParams parse_view(const JsonValue& j) {
   p.gathering = j.non_negative_or("gathering", p.gathering);
   if (p.gathering > 1) j.at("gathering").fail("must be at most 1 (the material's own stiffness)");
   p.keep_compression = j.boolean_or("keep_compression", p.keep_compression);
+  p.coarse_damping = j.non_negative_or("coarse_damping", p.coarse_damping);
+  if (p.coarse_damping > 10) j.at("coarse_damping").fail("must be at most 10 (time steps)");
   p.v_occluded = j.positive_or("v_occluded", p.v_back);
   if (p.v_occluded > 1) j.at("v_occluded").fail("must be at most 1");
   if (p.v_occluded < p.v_out) j.at("v_occluded").fail("must be at least v_out");

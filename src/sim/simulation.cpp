@@ -467,6 +467,7 @@ bool Simulation::take_step(const StepInterval& step, const StepRecoveryLimits& l
   p.damping = scene_.air.damping;
   p.drag = scene_.air.drag;
   p.wind = scene_.air.wind;
+  if (options_.mode == SimMode::View) p.coarse_damping = scene_.view.coarse_damping;
   p.threads = options_.threads;
   const std::vector<VelocityConstraint> held = constraints(step.t_end, h);
   std::vector<char> fixed(static_cast<std::size_t>(model_.num_nodes), 0);

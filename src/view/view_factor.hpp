@@ -81,6 +81,10 @@ struct ViewParams {
   // being gathered further with this strain factor (membrane.hpp; its stiffness the square),
   // where the compression law alone lets it collapse at almost no cost (an extension). 0: off.
   double gathering = 0;
+  // Coarse faces softened by the compression law dissipate as the folds they stand for would:
+  // Rayleigh damping of their membrane, in multiples of the time step (StepParams::
+  // coarse_damping; an extension). 0: off.
+  double coarse_damping = 0;
   // The motion criterion that eq. 2 never scales a coarse face below includes Narain's
   // compression criterion (where the face is not pressed between two surfaces), not velocity
   // alone: cloth the camera turned away from keeps the resolution of the buckles it is about to

@@ -90,6 +90,58 @@ TEST(Assembly, MatrixAndForcesAreTheElementTermsSummedDensely) {
   EXPECT_LE((assembled - assembled.transpose()).cwiseAbs().maxCoeff(), 1e-12 * a.cwiseAbs().maxCoeff());
 }
 
+// StepParams::coarse_damping: the system with it less the system without is, face by face,
+// h beta K on the matrix and -h beta K v on the forces, beta = coarse_damping h (1 - compression),
+// on the softened faces only; and it is damping of deformation: a rigid motion feels none.
+TEST(Assembly, CoarseDampingIsRayleighDampingOfTheSoftenedFacesOnly) {
+  TwoSheets s;
+  for (std::size_t f = 0; f < s.model.membranes.size(); f += 3) s.model.membranes[f].compression = 0.3;
+  StepParams p;
+  p.h = 0.004;
+  p.threads = 2;
+  SystemAssembler plain(s.model), damped(s.model);
+  plain.assemble(s.x, s.v, p);
+  p.coarse_damping = 2;
+  damped.assemble(s.x, s.v, p);
+
+  const int64_t dim = 3 * static_cast<int64_t>(s.model.num_nodes);
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(dim, dim);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(dim);
+  int softened = 0;
+  for (std::size_t f = 0; f < s.model.face_nodes.size(); ++f) {
+    if (s.model.membranes[f].compression == 1) continue;
+    ++softened;
+    const auto& nodes = s.model.face_nodes[f];
+    TriStencil xs;
+    VecN<9> vl;
+    for (std::size_t i = 0; i < 3; ++i) {
+      xs[i] = s.x.segment<3>(3 * nodes[i]);
+      vl.segment<3>(3 * static_cast<Eigen::Index>(i)) = s.v.segment<3>(3 * nodes[i]);
+    }
+    const double beta = 2 * p.h * (1 - 0.3);
+    const MatN<9> k = membrane_eval(xs, s.model.membranes[f]).hessian;
+    const VecN<9> force = -p.h * beta * (k * vl);
+    for (int i = 0; i < 3; ++i) {
+      b.segment<3>(3 * nodes[static_cast<std::size_t>(i)]) += force.segment<3>(3 * i);
+      for (int j = 0; j < 3; ++j)
+        a.block<3, 3>(3 * nodes[static_cast<std::size_t>(i)], 3 * nodes[static_cast<std::size_t>(j)]) += p.h * beta * k.block<3, 3>(3 * i, 3 * j);
+    }
+  }
+  ASSERT_GT(softened, 10);
+  const Eigen::MatrixXd added = Eigen::MatrixXd(damped.matrix()) - Eigen::MatrixXd(plain.matrix());
+  EXPECT_GT(a.cwiseAbs().maxCoeff(), 0);
+  EXPECT_LE((added - a).cwiseAbs().maxCoeff(), 1e-9 * a.cwiseAbs().maxCoeff());
+  EXPECT_LE((damped.rhs() - plain.rhs() - b).cwiseAbs().maxCoeff(), 1e-9 * b.cwiseAbs().maxCoeff());
+
+  // A rigid translation of everything: the membrane Hessian has it in its null space.
+  Eigen::VectorXd translation(dim);
+  for (int32_t i = 0; i < s.model.num_nodes; ++i) translation.segment<3>(3 * i) = Vec3(0.8, -0.3, 0.5);
+  damped.assemble(s.x, translation, p);
+  p.coarse_damping = 0;
+  plain.assemble(s.x, translation, p);
+  EXPECT_LE((damped.rhs() - plain.rhs()).cwiseAbs().maxCoeff(), 1e-12 * plain.rhs().cwiseAbs().maxCoeff());
+}
+
 // The assembled forces against central differences of the total elastic energy at `x_forces`,
 // and the assembled stiffness against central differences of those forces at `x_stiffness`,
 // where the element Hessians the assembler uses must be the exact ones. With v = 0, no gravity
