@@ -160,13 +160,14 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
       energy += m.energy;
       VecN<9> vl = gather<9>(v, nodes);
       MatN<9> local = h2 * m.hessian;
-      VecN<9> rhs = -h * m.gradient - h2 * (m.hessian * vl);
+      const VecN<9> kv = m.hessian * vl;
+      VecN<9> rhs = -h * m.gradient - h2 * kv;
       const double compression = model_.membranes[static_cast<std::size_t>(f)].compression;
       if (p.coarse_damping > 0 && compression < 1) {
         // StepParams::coarse_damping: D = beta K in (M + h D + h^2 K) dv = h (f - D v) - h^2 K v.
         const double beta = p.coarse_damping * h * (1 - compression);
         local += h * beta * m.hessian;
-        rhs -= h * beta * (m.hessian * vl);
+        rhs -= h * beta * kv;
       }
       if (p.drag > 0) {
         // Air drag on the face normal, linear in the face's mean velocity relative to the wind.
