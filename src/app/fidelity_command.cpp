@@ -51,8 +51,9 @@ const char* kFidelityHelp =
     "Writes OUT/fidelity.csv (one row a frame), OUT/fidelity_garments.csv (one row a garment a\n"
     "frame: the overlap of that garment's own pixels, to tell which one departs) and\n"
     "OUT/fidelity_shots.csv (one row a shot between the camera's cuts, and a last row `all`),\n"
-    "prints the garments with the lowest overlap over the run and a verdict for each shot and\n"
-    "for the whole run: pass when\n"
+    "prints the garments with the lowest overlap over the run (with --floor also those that lose\n"
+    "the most pixels beyond the floor's rate: a shot's departure, where a small far garment's low\n"
+    "overlap counts for few pixels) and a verdict for each shot and for the whole run: pass when\n"
     "  overlap mean  >= floor overlap mean - X   (--overlap-margin, default 0.02)\n"
     "  overlap min   >= floor overlap min - X    (--min-margin, default 0.05)\n"
     "  detail ratio  >= X                        (--detail, default 0.9: run's mean over reference's)\n"
@@ -277,6 +278,30 @@ std::string garments_line(const std::vector<GarmentFidelity>& garments) {
   return o.str();
 }
 
+// e.g. "garments by their part of the pixels lost beyond the floor, largest first: dress03 19%,
+// ..."; the largest five; empty when no garment loses more than the floor does.
+std::string departure_line(std::vector<GarmentFidelity> garments) {
+  double total = 0;
+  for (const GarmentFidelity& g : garments)
+    if (g.departure > 0) total += g.departure;
+  if (!(total > 0)) return "";
+  std::stable_sort(garments.begin(), garments.end(), [](const GarmentFidelity& a, const GarmentFidelity& b) {
+    return (a.departure > 0 ? a.departure : 0) > (b.departure > 0 ? b.departure : 0);
+  });
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(0) << "garments by their part of the pixels lost beyond the floor, largest first:";
+  std::size_t shown = 0, losing = 0;
+  for (const GarmentFidelity& g : garments) {
+    if (!(g.departure > 0)) continue;
+    ++losing;
+    if (shown == 5) continue;
+    o << (shown == 0 ? " " : ", ") << g.garment << " " << 100 * g.departure / total << "%";
+    ++shown;
+  }
+  if (shown < losing) o << " (" << losing - shown << " more)";
+  return o.str();
+}
+
 const char* kShotsHeader =
     "shot,first_frame,last_frame,frames,overlap_mean,overlap_min,floor_overlap_mean,floor_overlap_min,detail_run,detail_reference,"
     "detail_ratio,popping_pairs,popping_run,popping_reference,popping_ratio,verdict,failed,detail_floor_ratio,popping_floor_ratio,"
@@ -426,6 +451,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
     shots_csv->finish();
     const std::vector<GarmentFidelity> garments = summarise_garments(garment_record);
     if (!garments.empty()) out << "vdcloth fidelity: " << garments_line(garments) << "\n";
+    if (const std::string departing = departure_line(garments); !departing.empty()) out << "vdcloth fidelity: " << departing << "\n";
     for (const ShotFidelity& s : shots) out << "vdcloth fidelity: " << verdict_line(s) << "\n";
     out << "vdcloth fidelity: " << record.size() << " frame(s) of " << f.run << " against " << f.reference;
     if (!f.floors.empty()) out << " (floor " << joined(f.floors, ", ") << ")";

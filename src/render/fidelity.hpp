@@ -111,6 +111,10 @@ struct GarmentFidelity {
   int frames = 0;  // showing it in the run or the reference
   double overlap = 1;
   double floor_overlap = kNotMeasured;  // over the frames with a floor overlap
+  long long pixels = 0;                 // showing it in the run or the reference, over the frames
+  // The pixels it loses beyond the floor's rate, (floor_overlap - overlap) x pixels: its part of
+  // the shot's departure, where a small far garment's low overlap counts for few pixels.
+  double departure = kNotMeasured;
 };
 
 // Each garment's frames summed up, the lowest overlap first (ties by name); a garment no frame

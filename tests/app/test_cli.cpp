@@ -940,6 +940,7 @@ TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHan
     EXPECT_EQ(row.at("floor_overlap"), "") << "no floor";
   }
   EXPECT_NE(out_.str().find("garments by overlap over the run, lowest first: a 0.600, b 1.000\n"), std::string::npos) << out_.str();
+  EXPECT_EQ(out_.str().find("pixels lost beyond the floor"), std::string::npos) << "no floor, no departure";
   // Against the unmoved run as the floor (overlap 1), both overlap targets fail: exit status 3.
   EXPECT_EQ(run({"fidelity", path, moved.string(), out_dir(), "--floor", out_dir(), "--scale", "1", "--out", floored.string()}),
             kExitSimulationFailed)
@@ -947,6 +948,9 @@ TEST_F(CliTest, FidelityOfAGarmentMovedByWholePixelsGivesTheOverlapComputedByHan
   EXPECT_NE(out_.str().find("overlap 0.756 mean / 0.756 min (floor 1.000 / 1.000)"), std::string::npos) << out_.str();
   EXPECT_NE(out_.str().find(": fail (overlap mean, overlap min)"), std::string::npos) << out_.str();
   EXPECT_NE(out_.str().find("lowest first: a 0.600 (floor 1.000), b 1.000 (floor 1.000)\n"), std::string::npos) << out_.str();
+  // Only a loses pixels beyond the floor (240 of its 600 a frame): all of the departure.
+  EXPECT_NE(out_.str().find("garments by their part of the pixels lost beyond the floor, largest first: a 100%\n"), std::string::npos)
+      << out_.str();
   const auto shots = csv_rows(floored / "fidelity_shots.csv");
   ASSERT_EQ(shots.size(), 2u);
   EXPECT_EQ(shots[1].at("shot"), "all");

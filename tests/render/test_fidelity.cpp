@@ -303,7 +303,8 @@ TEST(FidelitySummary, PoppingWithoutPairsIsNotJudgedAndStillnessIsAlike) {
 
 // Garment x: 90 of 100 pixels alike at one frame, 150 of 300 at the next: 240 / 400 = 0.6 over
 // the run (the frames' mean, 0.7, would let the smaller frame count as much); its floor 100 of
-// 100 and 160 of 200: 260 / 300. Garment z: 0.95 of 20 pixels, no floor. Garment y never shows.
+// 100 and 160 of 200: 260 / 300, so of its 400 pixels it loses 160 where the floor's rate loses
+// 53.3. Garment z: 0.95 of 20 pixels, no floor. Garment y never shows.
 TEST(FidelitySummary, GarmentsArePooledOverTheirPixelsLowestFirst) {
   auto frame = [](int k, const char* garment, int either, double overlap, int floor_either, double floor_overlap) {
     GarmentFrame g;
@@ -324,10 +325,15 @@ TEST(FidelitySummary, GarmentsArePooledOverTheirPixelsLowestFirst) {
   EXPECT_EQ(g[0].frames, 2);
   EXPECT_NEAR(g[0].overlap, 0.6, 1e-15);
   EXPECT_NEAR(g[0].floor_overlap, 260.0 / 300.0, 1e-15);
+  // x shows in 400 pixels and loses 160 of them, where the floor's rate would lose 400 x 40/300.
+  EXPECT_EQ(g[0].pixels, 400);
+  EXPECT_NEAR(g[0].departure, 160.0 - 400.0 * 40.0 / 300.0, 1e-12);
   EXPECT_EQ(g[1].garment, "z");
   EXPECT_EQ(g[1].frames, 1);
   EXPECT_NEAR(g[1].overlap, 0.95, 1e-15);
   EXPECT_TRUE(std::isnan(g[1].floor_overlap));
+  EXPECT_EQ(g[1].pixels, 20);
+  EXPECT_TRUE(std::isnan(g[1].departure));
   EXPECT_TRUE(summarise_garments({}).empty());
 }
 
