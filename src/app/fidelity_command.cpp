@@ -280,25 +280,21 @@ std::string garments_line(const std::vector<GarmentFidelity>& garments) {
 
 // e.g. "garments by their part of the pixels lost beyond the floor, largest first: dress03 19%,
 // ..."; the largest five; empty when no garment loses more than the floor does.
-std::string departure_line(std::vector<GarmentFidelity> garments) {
+std::string departure_line(const std::vector<GarmentFidelity>& garments) {
+  std::vector<const GarmentFidelity*> losing;
   double total = 0;
   for (const GarmentFidelity& g : garments)
-    if (g.departure > 0) total += g.departure;
-  if (!(total > 0)) return "";
-  std::stable_sort(garments.begin(), garments.end(), [](const GarmentFidelity& a, const GarmentFidelity& b) {
-    return (a.departure > 0 ? a.departure : 0) > (b.departure > 0 ? b.departure : 0);
-  });
+    if (g.departure() > 0) {
+      losing.push_back(&g);
+      total += g.departure();
+    }
+  if (losing.empty()) return "";
+  std::stable_sort(losing.begin(), losing.end(), [](const GarmentFidelity* a, const GarmentFidelity* b) { return a->departure() > b->departure(); });
+  const std::size_t shown = std::min<std::size_t>(losing.size(), 5);
   std::ostringstream o;
   o << std::fixed << std::setprecision(0) << "garments by their part of the pixels lost beyond the floor, largest first:";
-  std::size_t shown = 0, losing = 0;
-  for (const GarmentFidelity& g : garments) {
-    if (!(g.departure > 0)) continue;
-    ++losing;
-    if (shown == 5) continue;
-    o << (shown == 0 ? " " : ", ") << g.garment << " " << 100 * g.departure / total << "%";
-    ++shown;
-  }
-  if (shown < losing) o << " (" << losing - shown << " more)";
+  for (std::size_t k = 0; k < shown; ++k) o << (k == 0 ? " " : ", ") << losing[k]->garment << " " << 100 * losing[k]->departure() / total << "%";
+  if (shown < losing.size()) o << " (" << losing.size() - shown << " more)";
   return o.str();
 }
 

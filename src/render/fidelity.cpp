@@ -208,12 +208,9 @@ std::vector<GarmentFidelity> summarise_garments(const std::vector<GarmentFrame>&
     s.floor_either += f.floor_pixels_either;
   }
   std::vector<GarmentFidelity> out;
-  for (const auto& [garment, s] : by_garment) {
-    GarmentFidelity g{garment, s.frames, s.both / s.either, s.floor_either > 0 ? s.floor_both / s.floor_either : kNotMeasured,
-                      static_cast<long long>(s.either), kNotMeasured};
-    if (!std::isnan(g.floor_overlap)) g.departure = (g.floor_overlap - g.overlap) * s.either;
-    out.push_back(g);
-  }
+  for (const auto& [garment, s] : by_garment)
+    out.push_back({garment, s.frames, s.both / s.either, s.floor_either > 0 ? s.floor_both / s.floor_either : kNotMeasured,
+                   static_cast<long long>(s.either)});
   std::stable_sort(out.begin(), out.end(), [](const GarmentFidelity& a, const GarmentFidelity& b) { return a.overlap < b.overlap; });
   return out;
 }

@@ -327,13 +327,13 @@ TEST(FidelitySummary, GarmentsArePooledOverTheirPixelsLowestFirst) {
   EXPECT_NEAR(g[0].floor_overlap, 260.0 / 300.0, 1e-15);
   // x shows in 400 pixels and loses 160 of them, where the floor's rate would lose 400 x 40/300.
   EXPECT_EQ(g[0].pixels, 400);
-  EXPECT_NEAR(g[0].departure, 160.0 - 400.0 * 40.0 / 300.0, 1e-12);
+  EXPECT_NEAR(g[0].departure(), 160.0 - 400.0 * 40.0 / 300.0, 1e-12);
   EXPECT_EQ(g[1].garment, "z");
   EXPECT_EQ(g[1].frames, 1);
   EXPECT_NEAR(g[1].overlap, 0.95, 1e-15);
   EXPECT_TRUE(std::isnan(g[1].floor_overlap));
   EXPECT_EQ(g[1].pixels, 20);
-  EXPECT_TRUE(std::isnan(g[1].departure));
+  EXPECT_TRUE(std::isnan(g[1].departure()));
   EXPECT_TRUE(summarise_garments({}).empty());
 }
 
