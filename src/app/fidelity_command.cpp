@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <map>
@@ -263,19 +264,27 @@ void write_garment_row(std::ostream& csv, const GarmentFrame& g) {
       << cell(g.floor_overlap) << "\n";
 }
 
+// "TITLE: a, b, c, d, e (N more)": the first five of `count` items, each written by `item`.
+std::string first_five(const char* title, std::size_t count, const std::function<void(std::ostream&, std::size_t)>& item) {
+  const std::size_t shown = std::min<std::size_t>(count, 5);
+  std::ostringstream o;
+  o << std::fixed << title << ":";
+  for (std::size_t k = 0; k < shown; ++k) {
+    o << (k == 0 ? " " : ", ");
+    item(o, k);
+  }
+  if (shown < count) o << " (" << count - shown << " more)";
+  return o.str();
+}
+
 // e.g. "garments by overlap over the run, lowest first: dress04 0.908 (floor 0.983), ..."; the
 // lowest five of a crowd.
 std::string garments_line(const std::vector<GarmentFidelity>& garments) {
-  const std::size_t shown = std::min<std::size_t>(garments.size(), 5);
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(3) << "garments by overlap over the run, lowest first:";
-  for (std::size_t k = 0; k < shown; ++k) {
+  return first_five("garments by overlap over the run, lowest first", garments.size(), [&](std::ostream& o, std::size_t k) {
     const GarmentFidelity& g = garments[k];
-    o << (k == 0 ? " " : ", ") << g.garment << " " << g.overlap;
+    o << std::setprecision(3) << g.garment << " " << g.overlap;
     if (!std::isnan(g.floor_overlap)) o << " (floor " << g.floor_overlap << ")";
-  }
-  if (shown < garments.size()) o << " (" << garments.size() - shown << " more)";
-  return o.str();
+  });
 }
 
 // e.g. "garments by their part of the pixels lost beyond the floor, largest first: dress03 19%,
@@ -290,12 +299,9 @@ std::string departure_line(const std::vector<GarmentFidelity>& garments) {
     }
   if (losing.empty()) return "";
   std::stable_sort(losing.begin(), losing.end(), [](const GarmentFidelity* a, const GarmentFidelity* b) { return a->departure() > b->departure(); });
-  const std::size_t shown = std::min<std::size_t>(losing.size(), 5);
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(0) << "garments by their part of the pixels lost beyond the floor, largest first:";
-  for (std::size_t k = 0; k < shown; ++k) o << (k == 0 ? " " : ", ") << losing[k]->garment << " " << 100 * losing[k]->departure() / total << "%";
-  if (shown < losing.size()) o << " (" << losing.size() - shown << " more)";
-  return o.str();
+  return first_five("garments by their part of the pixels lost beyond the floor, largest first", losing.size(), [&](std::ostream& o, std::size_t k) {
+    o << std::setprecision(0) << losing[k]->garment << " " << 100 * losing[k]->departure() / total << "%";
+  });
 }
 
 const char* kShotsHeader =

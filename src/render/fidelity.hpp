@@ -4,7 +4,6 @@
 // targets set relative to the reference and to the chaos floor (the reference against a run of
 // it perturbed below any physical meaning).
 #pragma once
-#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -114,8 +113,9 @@ struct GarmentFidelity {
   double floor_overlap = kNotMeasured;  // over the frames with a floor overlap
   long long pixels = 0;                 // showing it in the run or the reference, over the frames
   // The pixels it loses beyond the floor's rate, (floor_overlap - overlap) x pixels: its part of
-  // the shot's departure, where a small far garment's low overlap counts for few pixels.
-  double departure() const { return std::isnan(floor_overlap) ? kNotMeasured : (floor_overlap - overlap) * static_cast<double>(pixels); }
+  // the shot's departure, where a small far garment's low overlap counts for few pixels (not
+  // measured without a floor overlap).
+  double departure() const { return (floor_overlap - overlap) * static_cast<double>(pixels); }
 };
 
 // Each garment's frames summed up, the lowest overlap first (ties by name); a garment no frame
