@@ -4,15 +4,10 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/stopwatch.hpp"
 #include "physics/block_diagonal_solver.hpp"
 
 namespace vdc {
-
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
 
 ImplicitIntegrator::ImplicitIntegrator(const ClothModel& model, LinearSolverKind kind, const LinearSolverParams& params)
     : assembler_(model), solver_(std::make_unique<BlockDiagonalSolver>(kind, params)) {

@@ -98,4 +98,25 @@ void rename_joints(Skeleton& skeleton, const std::map<std::string, std::string>&
   for (auto& [index, to] : renames) skeleton.joints[index].name = std::move(to);
 }
 
+std::string missing_joint(const Skeleton& skeleton, const std::string& joint) {
+  std::string msg = "the motion has no joint '" + joint + "'";
+  const std::vector<std::string> aliases = joint_aliases(joint);
+  if (!aliases.empty()) {
+    msg += " (nor";
+    for (std::size_t k = 0; k < aliases.size(); ++k) msg += (k ? ", " : " ") + aliases[k];
+    msg += ")";
+  }
+  msg += "; its joints:";
+  std::size_t listed = 0;
+  for (const Joint& j : skeleton.joints) {
+    if (j.end_site) continue;
+    if (listed == 8) {
+      msg += " ...";
+      break;
+    }
+    msg += (listed++ ? ", " : " ") + j.name;
+  }
+  return msg + " (a character's joint_names renames a capture's joints)";
+}
+
 }  // namespace vdc

@@ -26,6 +26,10 @@ std::optional<int> find_joint(const Skeleton& skeleton, const std::string& wante
 // that is not one of the project's figures' joints).
 std::vector<std::string> joint_aliases(const std::string& wanted);
 
+// Why find_joint found no `joint` in `skeleton`: the names tried and the first of its joints,
+// and how a scene maps another scheme's names.
+std::string missing_joint(const Skeleton& skeleton, const std::string& joint);
+
 // Renames joints (capture name -> name the scene uses), e.g. {"pelvis_ctrl": "Hips"}; throws
 // std::invalid_argument naming a capture name the skeleton does not have.
 void rename_joints(Skeleton& skeleton, const std::map<std::string, std::string>& names);

@@ -1,5 +1,6 @@
-// Crowds: copies of a template character and its garments, placed and varied from a seed.
-#include "scene/crowd.hpp"
+// The `crowds` block (docs/scene-format.md, "crowds[i]"): copies of a template character and its
+// garments, placed and varied from a seed.
+#include "scene/scene_crowds.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "scene/bvh_motion.hpp"
-#include "scene/crowd.hpp"
+#include "scene/scene_crowds.hpp"
 #include "scene/scene.hpp"
 
 namespace vdc {

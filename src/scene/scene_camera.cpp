@@ -1,0 +1,55 @@
+// The `camera` block (docs/scene-format.md, "camera"): the lens and the keyframed path with its cuts.
+#include "scene/scene_blocks.hpp"
+
+#include <string>
+
+namespace vdc {
+
+CameraPath parse_camera(const JsonValue& j) {
+  j.only_keys({"fov", "width", "height", "near", "far", "up", "keys", "focus_distance", "f_stop", "sensor_height", "shutter"});
+  Camera lens;
+  lens.fov_y_degrees = j.positive_or("fov", lens.fov_y_degrees);
+  if (lens.fov_y_degrees >= 180) j.at("fov").fail("must be below 180 degrees");
+  const long long w = j.integer_or("width", lens.width), h = j.integer_or("height", lens.height);
+  if (w < 1 || w > 100000) j.at("width").fail("must be between 1 and 100000 pixels");
+  if (h < 1 || h > 100000) j.at("height").fail("must be between 1 and 100000 pixels");
+  lens.width = static_cast<int>(w);
+  lens.height = static_cast<int>(h);
+  lens.near = j.positive_or("near", lens.near);
+  lens.far = j.positive_or("far", lens.far);
+  if (lens.far <= lens.near) j.at("far").fail("must be beyond near");
+  lens.up = j.vec3_or("up", lens.up);
+  if (lens.up.norm() == 0) j.at("up").fail("must not be zero");
+  const auto focus = j.find("focus_distance");
+  lens.focus_on_target = focus && focus->is_string();
+  if (lens.focus_on_target && focus->string() != "target")
+    focus->fail("expected a distance in metres, or \"target\" for the focus to follow the camera's target");
+  if (!lens.focus_on_target) lens.focus_distance = j.non_negative_or("focus_distance", lens.focus_distance);
+  lens.f_stop = j.positive_or("f_stop", lens.f_stop);
+  if (lens.f_stop < 0.5 || lens.f_stop > 256) j.at("f_stop").fail("must be between 0.5 and 256");
+  lens.sensor_height_mm = j.positive_or("sensor_height", lens.sensor_height_mm);
+  if (lens.sensor_height_mm > 1000) j.at("sensor_height").fail("must be at most 1000 (millimetres)");
+  if (lens.focus_distance > 0 && lens.focus_distance <= 1e-3 * lens.focal_length_mm())
+    j.at("focus_distance").fail("must be beyond the focal length (" + std::to_string(lens.focal_length_mm()) + " mm), or 0 for no depth of field");
+  lens.shutter = j.non_negative_or("shutter", lens.shutter);
+  if (lens.shutter > 1) j.at("shutter").fail("must be at most 1 (the whole frame time)");
+  std::vector<CameraKey> keys;
+  const JsonValue list = j.at("keys");
+  for (const JsonValue& k : list.items()) {
+    k.only_keys({"time", "position", "target", "cut"});
+    CameraKey key;
+    key.time = k.at("time").non_negative();
+    key.position = k.at("position").vec3();
+    key.target = k.at("target").vec3();
+    if (auto cut = k.find("cut")) key.cut = cut->boolean();
+    if (!keys.empty() && !(key.time > keys.back().time)) k.at("time").fail("keyframe times must increase");
+    if ((key.target - key.position).norm() == 0) k.at("target").fail("must differ from the position");
+    if (((key.target - key.position).normalized().cross(lens.up.normalized())).norm() < 1e-6)
+      k.at("target").fail("the view direction is parallel to the camera's up vector");
+    keys.push_back(key);
+  }
+  if (keys.empty()) list.fail("a camera needs at least one key");
+  return CameraPath(lens, std::move(keys));
+}
+
+}  // namespace vdc
