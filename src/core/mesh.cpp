@@ -12,6 +12,9 @@ namespace vdc {
 
 namespace {
 
+// "face 12", as validate() names an element.
+std::string element_name(const char* kind, int32_t i) { return std::string(kind) + " " + std::to_string(i); }
+
 template <class T>
 void erase_one(std::vector<T>& list, T value) {
   auto it = std::find(list.begin(), list.end(), value);
@@ -296,9 +299,16 @@ Vec3 Mesh::world_normal(FaceId f) const {
 
 ValidationReport Mesh::validate() const {
   ValidationReport r;
-  auto bad = [&r](const std::string& s) { r.problems.push_back(s); };
-  auto name = [](const char* kind, int32_t i) { return std::string(kind) + " " + std::to_string(i); };
+  validate_counts(r.problems);
+  validate_faces(r.problems);
+  validate_edges(r.problems);
+  validate_verts(r.problems);
+  validate_nodes(r.problems);
+  return r;
+}
 
+void Mesh::validate_counts(std::vector<std::string>& problems) const {
+  auto bad = [&problems](const std::string& s) { problems.push_back(s); };
   if (node_attrs_.size() != node_alive_.size() || vert_attrs_.size() != vert_alive_.size() ||
       edge_attrs_.size() != edge_alive_.size() || face_attrs_.size() != face_alive_.size())
     bad("attribute arrays out of step with element arrays");
@@ -306,96 +316,107 @@ ValidationReport Mesh::validate() const {
   if (count(node_alive_) != live_nodes_ || count(vert_alive_) != live_verts_ || count(edge_alive_) != live_edges_ ||
       count(face_alive_) != live_faces_)
     bad("live element counts out of step");
+}
 
+void Mesh::validate_faces(std::vector<std::string>& problems) const {
+  auto bad = [&problems](const std::string& s) { problems.push_back(s); };
   for (FaceId f : faces()) {
     const auto& vs = face_verts(f);
     bool refs_ok = true;
     for (VertId v : vs)
       if (!alive(v)) {
-        bad(name("face", f.idx) + " references dead vert " + std::to_string(v.idx));
+        bad(element_name("face", f.idx) + " references dead vert " + std::to_string(v.idx));
         refs_ok = false;
       }
     if (!refs_ok) continue;
     for (int i = 0; i < 3; ++i) {
       VertId v = vs[static_cast<std::size_t>(i)];
       const auto& vf = vert_faces(v);
-      if (std::count(vf.begin(), vf.end(), f) != 1) bad(name("vert", v.idx) + " does not list " + name("face", f.idx) + " once");
+      if (std::count(vf.begin(), vf.end(), f) != 1) bad(element_name("vert", v.idx) + " does not list " + element_name("face", f.idx) + " once");
       NodeId a = vert_node(v), b = face_node(f, (i + 1) % 3);
       EdgeId e = face_edges(f)[static_cast<std::size_t>(i)];
       if (!alive(e)) {
-        bad(name("face", f.idx) + " references dead edge");
+        bad(element_name("face", f.idx) + " references dead edge");
         continue;
       }
       int side = edge_node(e, 0) == a && edge_node(e, 1) == b ? 0 : (edge_node(e, 0) == b && edge_node(e, 1) == a ? 1 : -1);
       if (side < 0)
-        bad(name("face", f.idx) + " edge " + std::to_string(i) + " does not join its corner nodes");
+        bad(element_name("face", f.idx) + " edge " + std::to_string(i) + " does not join its corner nodes");
       else if (edge_face(e, side) != f)
-        bad(name("edge", e.idx) + " does not list " + name("face", f.idx) + " on the side it runs");
+        bad(element_name("edge", e.idx) + " does not list " + element_name("face", f.idx) + " on the side it runs");
     }
     if (face_node(f, 0) == face_node(f, 1) || face_node(f, 1) == face_node(f, 2) || face_node(f, 0) == face_node(f, 2))
-      bad(name("face", f.idx) + " repeats a node");
-    if (!(material_area(f) > 0)) bad(name("face", f.idx) + " has non-positive material-space area");
+      bad(element_name("face", f.idx) + " repeats a node");
+    if (!(material_area(f) > 0)) bad(element_name("face", f.idx) + " has non-positive material-space area");
   }
+}
 
+void Mesh::validate_edges(std::vector<std::string>& problems) const {
+  auto bad = [&problems](const std::string& s) { problems.push_back(s); };
   for (EdgeId e : edges()) {
     NodeId a = edge_node(e, 0), b = edge_node(e, 1);
     if (!alive(a) || !alive(b)) {
-      bad(name("edge", e.idx) + " references a dead node");
+      bad(element_name("edge", e.idx) + " references a dead node");
       continue;
     }
-    if (a == b) bad(name("edge", e.idx) + " joins a node to itself");
-    if (!edge_face(e, 0).valid() && !edge_face(e, 1).valid()) bad(name("edge", e.idx) + " has no face");
+    if (a == b) bad(element_name("edge", e.idx) + " joins a node to itself");
+    if (!edge_face(e, 0).valid() && !edge_face(e, 1).valid()) bad(element_name("edge", e.idx) + " has no face");
     for (int side = 0; side < 2; ++side) {
       FaceId f = edge_face(e, side);
       if (!f.valid()) continue;
       if (!alive(f)) {
-        bad(name("edge", e.idx) + " references dead face");
+        bad(element_name("edge", e.idx) + " references dead face");
         continue;
       }
       const auto& fe = face_edges(f);
-      if (std::find(fe.begin(), fe.end(), e) == fe.end()) bad(name("face", f.idx) + " does not list " + name("edge", e.idx));
+      if (std::find(fe.begin(), fe.end(), e) == fe.end()) bad(element_name("face", f.idx) + " does not list " + element_name("edge", e.idx));
     }
     for (NodeId n : {a, b}) {
       const auto& ne = node_edges(n);
-      if (std::count(ne.begin(), ne.end(), e) != 1) bad(name("node", n.idx) + " does not list " + name("edge", e.idx) + " once");
+      if (std::count(ne.begin(), ne.end(), e) != 1) bad(element_name("node", n.idx) + " does not list " + element_name("edge", e.idx) + " once");
     }
   }
+}
 
+void Mesh::validate_verts(std::vector<std::string>& problems) const {
+  auto bad = [&problems](const std::string& s) { problems.push_back(s); };
   for (VertId v : verts()) {
     NodeId n = vert_node(v);
     if (!alive(n)) {
-      bad(name("vert", v.idx) + " references dead node");
+      bad(element_name("vert", v.idx) + " references dead node");
       continue;
     }
     const auto& nv = node_verts(n);
-    if (std::count(nv.begin(), nv.end(), v) != 1) bad(name("node", n.idx) + " does not list " + name("vert", v.idx) + " once");
+    if (std::count(nv.begin(), nv.end(), v) != 1) bad(element_name("node", n.idx) + " does not list " + element_name("vert", v.idx) + " once");
     for (FaceId f : vert_faces(v)) {
       if (!alive(f)) {
-        bad(name("vert", v.idx) + " lists dead face");
+        bad(element_name("vert", v.idx) + " lists dead face");
         continue;
       }
       const auto& fv = face_verts(f);
-      if (std::find(fv.begin(), fv.end(), v) == fv.end()) bad(name("vert", v.idx) + " lists a face that does not use it");
+      if (std::find(fv.begin(), fv.end(), v) == fv.end()) bad(element_name("vert", v.idx) + " lists a face that does not use it");
     }
   }
+}
 
+void Mesh::validate_nodes(std::vector<std::string>& problems) const {
+  auto bad = [&problems](const std::string& s) { problems.push_back(s); };
   for (NodeId n : nodes()) {
     std::set<int32_t> neighbours;
     for (EdgeId e : node_edges(n)) {
       if (!alive(e)) {
-        bad(name("node", n.idx) + " lists dead edge");
+        bad(element_name("node", n.idx) + " lists dead edge");
         continue;
       }
       NodeId other = edge_node(e, 0) == n ? edge_node(e, 1) : edge_node(e, 0);
-      if (edge_node(e, 0) != n && edge_node(e, 1) != n) bad(name("node", n.idx) + " lists an edge not touching it");
-      if (!neighbours.insert(other.idx).second) bad(name("node", n.idx) + " has two edges to " + name("node", other.idx));
+      if (edge_node(e, 0) != n && edge_node(e, 1) != n) bad(element_name("node", n.idx) + " lists an edge not touching it");
+      if (!neighbours.insert(other.idx).second) bad(element_name("node", n.idx) + " has two edges to " + element_name("node", other.idx));
     }
     for (VertId v : node_verts(n))
-      if (!alive(v) || vert_node(v) != n) bad(name("node", n.idx) + " lists a vert that is not its own");
-    if (!x(n).allFinite() || !v(n).allFinite()) bad(name("node", n.idx) + " has a non-finite position or velocity");
-    if (!node_edges(n).empty() && fan_count(n) != 1) bad(name("node", n.idx) + " is a non-manifold vertex (its faces form several fans)");
+      if (!alive(v) || vert_node(v) != n) bad(element_name("node", n.idx) + " lists a vert that is not its own");
+    if (!x(n).allFinite() || !v(n).allFinite()) bad(element_name("node", n.idx) + " has a non-finite position or velocity");
+    if (!node_edges(n).empty() && fan_count(n) != 1) bad(element_name("node", n.idx) + " is a non-manifold vertex (its faces form several fans)");
   }
-  return r;
 }
 
 }  // namespace vdc

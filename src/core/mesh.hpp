@@ -167,6 +167,12 @@ class Mesh {
     return i >= 0 && i < static_cast<int32_t>(alive.size()) && alive[static_cast<std::size_t>(i)];
   }
   void attach_face_to_edge(FaceId f, int corner, NodeId a, NodeId b);
+  // validate()'s checks, element kind by element kind, each adding what it finds to `problems`.
+  void validate_counts(std::vector<std::string>& problems) const;
+  void validate_faces(std::vector<std::string>& problems) const;
+  void validate_edges(std::vector<std::string>& problems) const;
+  void validate_verts(std::vector<std::string>& problems) const;
+  void validate_nodes(std::vector<std::string>& problems) const;
 
   // nodes
   std::vector<char> node_alive_;

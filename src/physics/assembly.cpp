@@ -28,6 +28,13 @@ VecN<N> gather(const Eigen::VectorXd& v, const std::array<int32_t, N / 3>& nodes
 }  // namespace
 
 SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
+  const int32_t slots = build_neighbours();
+  build_pattern(slots);
+  build_gather_lists(slots);
+}
+
+int32_t SystemAssembler::build_neighbours() {
+  const ClothModel& model = model_;
   const int32_t n = model.num_nodes;
   // Each node's neighbours (itself and the nodes it shares an element with) in one flat array:
   // counted, filled, then each node's run sorted, made unique and packed forward in place.
@@ -63,9 +70,12 @@ SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
   slot_start_[static_cast<std::size_t>(n)] = packed;
   slot_node_.resize(static_cast<std::size_t>(packed));
   slot_node_.shrink_to_fit();
-  const int32_t slots = packed;
+  return packed;
+}
 
-  // Matrix pattern: scalar column 3j+c holds rows 3i+r for each neighbour i of j.
+// Matrix pattern: scalar column 3j+c holds rows 3i+r for each neighbour i of j.
+void SystemAssembler::build_pattern(int32_t slots) {
+  const int32_t n = model_.num_nodes;
   const int64_t dim = 3 * static_cast<int64_t>(n);
   a_.resize(dim, dim);
   a_.resizeNonZeros(9 * static_cast<int64_t>(slots));
@@ -81,8 +91,12 @@ SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
   outer[dim] = static_cast<int>(pos);
   std::fill(a_.valuePtr(), a_.valuePtr() + pos, 0.0);
   b_.setZero(dim);
+}
 
-  // Gather lists: which element blocks and vectors land in each slot and node.
+// Gather lists: which element blocks and vectors land in each slot and node.
+void SystemAssembler::build_gather_lists(int32_t slots) {
+  const ClothModel& model = model_;
+  const int32_t n = model.num_nodes;
   const auto nf = static_cast<int64_t>(model.face_nodes.size());
   const auto ne = static_cast<int64_t>(model.bend_nodes.size());
   // Left uninitialised: assemble() writes every element's local matrix and vector in full, and its

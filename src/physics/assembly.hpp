@@ -59,6 +59,11 @@ class SystemAssembler {
   int64_t value_index(int32_t i, int32_t j, int r, int c) const;
 
  private:
+  // The constructor's parts: each node's neighbours (returns the number of slots), the matrix's
+  // pattern, and the lists that gather element blocks into slots and element vectors into nodes.
+  int32_t build_neighbours();
+  void build_pattern(int32_t slots);
+  void build_gather_lists(int32_t slots);
   struct Contribution {
     int64_t offset;  // of the local matrix's 3x3 block (a, b), column-major with leading dim ld
     int32_t ld;
