@@ -68,11 +68,13 @@ TEST_P(CharacterShot, NoGarmentCrossesABodyAnotherGarmentOrItselfAtAnyFrameEnd) 
 }
 
 // karate's three layers stay ordered; the solo dress and the ten dresses never cross anything.
+// solo-dancer's adaptive run is ViewFidelity's (test_view_fidelity.cpp), which checks it for
+// crossings over 25 frames as it checks the straps.
 std::vector<CharacterRun> character_runs() {
   std::vector<CharacterRun> runs;
   for (SimMode mode : {SimMode::Fixed, SimMode::Adaptive, SimMode::View}) {
     runs.push_back({"karate", mode, 20, 0.05, 1});
-    runs.push_back({"solo-dancer", mode, 20, 0.05, 1});
+    if (mode != SimMode::Adaptive) runs.push_back({"solo-dancer", mode, 20, 0.05, 1});
     runs.push_back({"dancers-10", mode, 5, 0.06, 2});
   }
   return runs;

@@ -1,0 +1,48 @@
+# Run at build time (cmake -P), after a test binary links: lists its tests and writes OUT, a
+# ctest file with one test a suite (`Suite`, running `Suite.*`), a suite of more than SHARD tests
+# split into shards of about SHARD (`Suite:k/n`, gtest's own sharding). One process a suite rather
+# than a test: an instrumented binary takes a fifth of a second to start and end, more than most
+# unit tests take to run.
+#   -DBINARY=file -DOUT=file -DSHARD=n -DTIMEOUT=s -DENVIRONMENT=a=1,b=2 -DWORKDIR=dir
+cmake_minimum_required(VERSION 3.22)
+execute_process(COMMAND "${BINARY}" --gtest_list_tests OUTPUT_VARIABLE listing RESULT_VARIABLE status TIMEOUT 60)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "${BINARY} --gtest_list_tests failed (${status})")
+endif()
+string(REPLACE ";" "\\;" listing "${listing}")
+string(REPLACE "\n" ";" lines "${listing}")
+set(suites "")
+foreach(line IN LISTS lines)
+  if(line MATCHES "^([^ #][^ ]*)\\.")  # a suite: `Name.` or `Instance/Name.`, perhaps with a comment
+    set(suite "${CMAKE_MATCH_1}")
+    list(APPEND suites "${suite}")
+    set(count_${suite} 0)
+  elseif(line MATCHES "^  [^ ]" AND DEFINED suite)
+    math(EXPR count_${suite} "${count_${suite}} + 1")
+  endif()
+endforeach()
+string(REPLACE "," ";" ENVIRONMENT "${ENVIRONMENT}")
+set(text "# Written by cmake/gtest_suites.cmake from ${BINARY} --gtest_list_tests.\n")
+foreach(suite IN LISTS suites)
+  set(n ${count_${suite}})
+  if(n EQUAL 0)
+    continue()
+  endif()
+  math(EXPR shards "(${n} + ${SHARD} - 1) / ${SHARD}")
+  math(EXPR last "${shards} - 1")
+  foreach(k RANGE ${last})
+    set(name "${suite}")
+    set(env ${ENVIRONMENT})
+    if(shards GREATER 1)
+      math(EXPR shown "${k} + 1")
+      set(name "${suite}:${shown}/${shards}")
+      list(APPEND env "GTEST_TOTAL_SHARDS=${shards}" "GTEST_SHARD_INDEX=${k}")
+    endif()
+    # The suite's share of tests as its cost: ctest starts the largest first on a fresh tree.
+    math(EXPR cost "(${n} + ${shards} - 1) / ${shards}")
+    string(APPEND text "add_test([=[${name}]=] [=[${BINARY}]=] [=[--gtest_filter=${suite}.*]=])\n")
+    string(APPEND text "set_tests_properties([=[${name}]=] PROPERTIES WORKING_DIRECTORY [=[${WORKDIR}]=] TIMEOUT ${TIMEOUT} COST ${cost}")
+    string(APPEND text " ENVIRONMENT [=[${env}]=])\n")
+  endforeach()
+endforeach()
+file(WRITE "${OUT}" "${text}")
