@@ -15,7 +15,7 @@ deps:
 	@scripts/install-deps.sh
 
 # build/: Release, the simulator, the benchmarks and the scene tests (whole scenes at full speed).
-# Every layer compiles as unity files of eight sources, in half the time of one object a source;
+# Every layer compiles as unity files of sixteen sources, in half the time of one object a source;
 # the two run bit for bit the same, and their speeds in runs side by side differ by less than
 # this machine's spread (bench/RESULTS.md, "A Release build with unity files").
 configure:
@@ -27,7 +27,7 @@ build: deps configure
 
 # build-asan/: the unit tests under AddressSanitizer and UndefinedBehaviorSanitizer, at -O1 with
 # line tables only: enough for the reports' file and line, and it compiles in two thirds of the
-# time -O2 takes, while the tests run as fast. Unity files (eight sources each) halve the
+# time -O2 takes, while the tests run as fast. Unity files (sixteen sources each) halve the
 # layers' compile time again.
 build-asan: deps
 	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
