@@ -7,7 +7,7 @@ MODE ?= view
 FRAMES ?= 175
 OUT ?= out/solo-dancer
 
-.PHONY: all deps configure configure-asan build build-asan build-test-programs run test bench fuzz clean
+.PHONY: all deps configure build build-asan run test bench fuzz clean
 
 all: build
 
@@ -29,28 +29,21 @@ build: deps configure
 # line tables only: enough for the reports' file and line, and it compiles in two thirds of the
 # time -O2 takes, while the tests run as fast. Unity files (sixteen sources each) halve the
 # layers' compile time again.
-configure-asan: deps
+build-asan: deps
 	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
 	  -DVDCLOTH_SANITIZE=ON -DVDCLOTH_UNITY=ON -DVDCLOTH_TESTS=ON -DVDCLOTH_SCENE_TESTS=OFF -DVDCLOTH_BENCH=OFF
-
-build-asan: configure-asan
 	cmake --build build-asan -j $(JOBS)
-
-# What make test runs: the simulator and the scene tests of build/ (not its benchmarks).
-build-test-programs: configure
-	cmake --build build -j $(JOBS) --target vdcloth vdcloth_scene_tests
 
 run: deps configure
 	cmake --build build -j $(JOBS) --target vdcloth
 	build/vdcloth run $(SCENE) --mode $(MODE) --frames $(FRAMES) --out $(OUT)
 
-# The tests need the simulator and the scene tests of build/ and the unit tests of build-asan/.
-# The two trees build side by side (each ninja on every core): where one waits on a single job
-# (a precompiled header, a link), the other's jobs take the idle core. One ctest runs both trees'
-# tests together (build-tests/ lists them), the long scene tests first (their COST,
-# tests/CMakeLists.txt), so neither tree's last tests leave a core idle while the other's wait.
-test: deps
-	$(MAKE) --no-print-directory -j 2 build-asan build-test-programs
+# The tests need the simulator and the scene tests of build/ (not its benchmarks) and the unit
+# tests of build-asan/. One ctest runs both trees' tests together (build-tests/ lists them), the
+# long scene tests first (their COST, tests/CMakeLists.txt), so neither tree's last tests leave a
+# core idle while the other's wait.
+test: deps configure build-asan
+	cmake --build build -j $(JOBS) --target vdcloth vdcloth_scene_tests
 	@mkdir -p build-tests
 	@printf 'subdirs("%s/build-asan")\nsubdirs("%s/build")\n' "$(CURDIR)" "$(CURDIR)" > build-tests/CTestTestfile.cmake
 	ctest --test-dir build-tests --output-on-failure -j $(JOBS)
