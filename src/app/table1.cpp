@@ -21,6 +21,7 @@
 #include "app/cli.hpp"
 #include "core/error.hpp"
 #include "core/resource_usage.hpp"
+#include "io/json_parse.hpp"
 #include "output/checkpoint.hpp"
 #include "output/run_output.hpp"
 #include "scene/scene.hpp"
@@ -124,13 +125,12 @@ void write_run_status(const std::string& dir, const Run& r) {
 // CPU time, peak memory and steal from the run's summary.json, which sums them over every
 // process a resumed run was made in; left as they are when the summary does not have them.
 void read_summary_usage(const std::string& dir, Run& r) {
-  std::ifstream in(dir + "/summary.json");
-  if (!in) return;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (j.is_discarded() || !j.contains("cpu_seconds") || !j.contains("peak_memory_kib")) return;
+  const nlohmann::json j = read_json_or_null(dir + "/summary.json");
+  if (!j.is_object() || !j.contains("cpu_seconds") || !j.contains("peak_memory_kib")) return;
+  if (!j["cpu_seconds"].is_number() || !j["peak_memory_kib"].is_number()) return;
   r.cpu_seconds = j["cpu_seconds"].get<double>();
   r.peak_kib = j["peak_memory_kib"].get<long>();
-  if (j.contains("steal")) r.steal = j["steal"].get<double>();
+  if (j.contains("steal") && j["steal"].is_number()) r.steal = j["steal"].get<double>();
 }
 
 }  // namespace

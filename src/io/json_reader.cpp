@@ -7,47 +7,15 @@
 #include <sstream>
 
 #include "io/input_file.hpp"
+#include "io/json_parse.hpp"
 
 namespace vdc {
 
-namespace {
-
-// "line L, column C" of byte `offset` of `text` (both counted from 1).
-std::string line_column(const std::string& text, std::size_t offset) {
-  std::size_t line = 1, column = 1;
-  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return "line " + std::to_string(line) + ", column " + std::to_string(column);
-}
-
-}  // namespace
-
 JsonValue JsonValue::load_file(const std::string& path) {
   const std::string text = read_input_text(path, kMaxFileBytes, "JSON");
-  try {
-    return JsonValue(nlohmann::json::parse(text), path, "");
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
-    const std::string msg = e.what();
-    const std::size_t at = msg.find(" at line ");
-    const std::size_t colon = at == std::string::npos ? std::string::npos : msg.find(": ", at);
-    if (colon != std::string::npos) throw InputError(path, msg.substr(at + 4, colon - at - 4), "JSON syntax error: " + shortened(msg.substr(colon + 2)));
-    throw InputError(path, "byte " + std::to_string(e.byte), "JSON syntax error: " + shortened(msg));
-  } catch (const nlohmann::json::out_of_range& e) {
-    // "[json.exception.out_of_range.406] number overflow parsing '1e400'": found again in the text.
-    const std::string msg = e.what();
-    const std::size_t open = msg.find("parsing '"), close = msg.rfind('\'');
-    const std::string token = open == std::string::npos || close <= open + 9 ? "" : msg.substr(open + 9, close - open - 9);
-    const std::size_t where = token.empty() ? std::string::npos : text.find(token);
-    throw InputError(path, where == std::string::npos ? "" : line_column(text, where),
-                     "number out of range" + (token.empty() ? std::string() : ": " + shortened(token)));
-  }
+  JsonParse parsed = parse_json(text);
+  if (!parsed.problem.empty()) throw InputError(path, json_failure_place(parsed), parsed.problem);
+  return JsonValue(std::move(parsed.value), path, "");
 }
 
 JsonValue::JsonValue(nlohmann::json value, std::string file, std::string path)

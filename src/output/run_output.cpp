@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/resource_usage.hpp"
 #include "output/checkpoint.hpp"
+#include "io/json_parse.hpp"
 #include "io/obj.hpp"
 #include "io/ply.hpp"
 #include "view/view_factor.hpp"
@@ -193,10 +194,8 @@ void RunOutput::write_stats_row(const FrameStats& s) {
 }
 
 bool run_is_done(const std::string& dir, int frames) {
-  std::ifstream in(dir + "/summary.json");
-  if (!in) return false;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  return j.is_object() && j.value("status", "") == "done" && j.value("frames", -1) == frames;
+  const nlohmann::json j = read_json_or_null(dir + "/summary.json");
+  return j.is_object() && j.contains("status") && j["status"] == "done" && j.contains("frames") && j["frames"] == frames;
 }
 
 std::vector<GarmentSize> garment_sizes(const Simulation& part) {
