@@ -181,7 +181,7 @@ std::string json_failure_place(const JsonParse& parsed) {
 
 nlohmann::json read_json_or_null(const std::string& path) {
   try {
-    JsonParse parsed = parse_json(read_input_text(path, std::uintmax_t{256} << 20, "JSON"));
+    JsonParse parsed = parse_json(read_input_text(path, kMaxJsonFileBytes, "JSON"));
     return parsed.problem.empty() ? std::move(parsed.value) : Json(nullptr);
   } catch (const InputError&) {
     return nullptr;

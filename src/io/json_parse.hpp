@@ -1,5 +1,6 @@
 // JSON text to a value: nesting bounded, and a failure placed by line, column and key path.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +11,8 @@ namespace vdc {
 // as it nests, so a deeper text is refused rather than read (a scene of 200,000 nested arrays
 // under one key overflowed the stack); no input of the project's nests past a dozen.
 constexpr int kMaxJsonDepth = 100;
+// The largest JSON file read.
+constexpr std::uintmax_t kMaxJsonFileBytes = std::uintmax_t{256} << 20;
 
 struct JsonParse {
   nlohmann::json value;  // the text's value when `problem` is empty, null otherwise

@@ -12,7 +12,7 @@
 namespace vdc {
 
 JsonValue JsonValue::load_file(const std::string& path) {
-  const std::string text = read_input_text(path, kMaxFileBytes, "JSON");
+  const std::string text = read_input_text(path, kMaxJsonFileBytes, "JSON");
   JsonParse parsed = parse_json(text);
   if (!parsed.problem.empty()) throw InputError(path, json_failure_place(parsed), parsed.problem);
   return JsonValue(std::move(parsed.value), path, "");

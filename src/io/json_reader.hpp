@@ -16,10 +16,10 @@ namespace vdc {
 
 class JsonValue {
  public:
-  // Parses a file; syntax errors and numbers out of range become InputError with "line L,
-  // column C". Only regular files of at most kMaxFileBytes are read.
+  // Parses a file (parse_json); syntax errors, numbers out of range and nesting too deep become
+  // InputError with the key path and "line L, column C". Only regular files of at most
+  // kMaxJsonFileBytes are read.
   static JsonValue load_file(const std::string& path);
-  static constexpr std::uintmax_t kMaxFileBytes = std::uintmax_t{256} << 20;
   JsonValue(nlohmann::json value, std::string file, std::string path);
 
   const std::string& file() const { return file_; }
