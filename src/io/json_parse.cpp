@@ -65,9 +65,10 @@ class PathTrackingBuilder {
   }
   bool end_object() { return close(); }
   bool end_array() { return close(); }
-  bool parse_error(std::size_t, const std::string&, const Json::exception& e) {
+  bool parse_error(std::size_t position, const std::string&, const Json::exception& e) {
     failure_ = e.what();
     failure_id_ = e.id;
+    failure_end_ = position;
     return false;
   }
 
@@ -75,6 +76,7 @@ class PathTrackingBuilder {
   bool too_deep() const { return too_deep_; }
   const std::string& failure() const { return failure_; }
   int failure_id() const { return failure_id_; }
+  std::size_t failure_end() const { return failure_end_; }  // the byte after the failing token
   // The key path of the value being read when parsing stopped: "" at the top level.
   std::string path() const {
     std::string p;
@@ -134,6 +136,7 @@ class PathTrackingBuilder {
   bool too_deep_ = false;
   std::string failure_;
   int failure_id_ = 0;
+  std::size_t failure_end_ = 0;
 };
 
 }  // namespace
@@ -154,11 +157,10 @@ JsonParse parse_json(const std::string& text) {
   const std::string& msg = builder.failure();
   if (builder.failure_id() == 406) {
     // "[json.exception.out_of_range.406] number overflow parsing '1e400'": the token, placed
-    // by the key it was given for and its first occurrence in the text.
+    // by the key it was given for and where it starts, the parser having stopped just past it.
     const std::size_t open = msg.find("parsing '"), close = msg.rfind('\'');
     const std::string token = open == std::string::npos || close <= open + 9 ? "" : msg.substr(open + 9, close - open - 9);
-    const std::size_t where = token.empty() ? std::string::npos : text.find(token);
-    if (where != std::string::npos) out.at = line_column(text, where);
+    if (!token.empty() && builder.failure_end() >= token.size()) out.at = line_column(text, builder.failure_end() - token.size());
     out.problem = "number out of range" + (token.empty() ? std::string() : ": " + shortened(token));
     return out;
   }

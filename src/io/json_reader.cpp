@@ -1,10 +1,7 @@
 #include "io/json_reader.hpp"
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "io/input_file.hpp"
 #include "io/json_parse.hpp"

@@ -1,7 +1,6 @@
 // Strict reading of JSON input files: every value knows its file and key path
 // (e.g. garments[0].material), unknown keys and wrong types are errors that name them.
 #pragma once
-#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <string>

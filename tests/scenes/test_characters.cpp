@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <ostream>
 #include <string>
 #include <unistd.h>
@@ -123,6 +122,34 @@ TEST(Characters, GarmentsStartValidAndClear) {
 // than the run's median (the test's mesh is coarser than the scenes': 2 cm at the finest).
 class CaptureShot : public testing::TestWithParam<std::string> {};
 
+// The garments' meshes of a run's one part, as a run resumed from them takes them.
+ResumePoint meshes_now(const Ensemble& run) {
+  const Simulation& part = *run.parts().front();
+  ResumePoint point;
+  point.frame = run.frame();
+  for (std::size_t g = 0; g < part.scene().garments.size(); ++g) {
+    point.names.push_back(part.scene().garments[g].name);
+    point.garments.push_back(part.garment_mesh(g));
+  }
+  return point;
+}
+
+// 40 frames from frame 0: none ends with a crossing or a collision fallback, and none takes 20
+// times the median frame.
+void forty_frames_clear(Ensemble& run, SimMode mode) {
+  const Simulation& part = *run.parts().front();
+  ASSERT_EQ(run.frame(), 0);
+  std::vector<double> seconds;
+  for (int f = 0; f < 40; ++f) {
+    const FrameStats s = run.step_frame();
+    seconds.push_back(s.seconds);
+    ASSERT_EQ(first_crossing(part), "") << sim_mode_name(mode) << " frame " << s.frame;
+    EXPECT_EQ(s.collision_fallbacks, 0) << sim_mode_name(mode) << " frame " << s.frame;
+  }
+  std::sort(seconds.begin(), seconds.end());
+  EXPECT_LT(seconds.back(), 20 * seconds[seconds.size() / 2]) << sim_mode_name(mode);
+}
+
 TEST_P(CaptureShot, ACaptureDrivesTheGarmentsWithoutCrossings) {
   const std::string capture = "/usr/share/assimp/models/BVH/01_01.bvh";
   if (!std::ifstream(capture)) GTEST_SKIP() << capture << " is missing (scripts/install-deps.sh installs assimp-testmodels)";
@@ -134,44 +161,21 @@ TEST_P(CaptureShot, ACaptureDrivesTheGarmentsWithoutCrossings) {
   scene["obstacles"][0]["character"]["scale"] = 0.056;
   for (auto& g : scene["garments"]) g["material"] = std::string(VDCLOTH_SOURCE_DIR) + "/materials/" + (name == "karate" ? "denim" : "cotton") + ".json";
   scene["remeshing"]["size"] = {0.02, 0.2};
-  std::ofstream(dir + "/capture.json") << scene.dump();
+  const std::string path = dir + "/capture.json";
+  std::ofstream(path) << scene.dump();
+
+  Ensemble adaptive(load_scene(path), SimOptions{SimMode::Adaptive, 1});
+  const Simulation& part = *adaptive.parts().front();
+  EXPECT_EQ(part.scene().preroll_frames, 25);
+  for (const GarmentSpec& g : part.scene().garments) EXPECT_EQ(g.fitted_to, scene["obstacles"][0]["name"]) << g.name;
+  ASSERT_EQ(first_crossing(part), "") << "at the start of the pre-roll";
+  while (adaptive.frame() < 0) adaptive.step_frame();
+  ASSERT_EQ(first_crossing(part), "") << "after the pre-roll";
   // The view run's pre-roll is sized by the adaptive method, so it is the adaptive run's: the view
   // run starts at frame 0 from the adaptive run's meshes there rather than making them again.
-  std::vector<ResumePoint> after_preroll;
-  for (SimMode mode : {SimMode::Adaptive, SimMode::View}) {
-    std::unique_ptr<Ensemble> made;
-    if (mode == SimMode::Adaptive) {
-      made = std::make_unique<Ensemble>(load_scene(dir + "/capture.json"), SimOptions{mode, 1});
-    } else {
-      made = std::make_unique<Ensemble>(load_scene(dir + "/capture.json"), SimOptions{mode, 1}, Simulation::Log{}, after_preroll, "the adaptive pre-roll");
-    }
-    Ensemble& run = *made;
-    const Simulation& part = *run.parts().front();
-    EXPECT_EQ(part.scene().preroll_frames, 25);
-    for (const GarmentSpec& g : part.scene().garments) EXPECT_EQ(g.fitted_to, scene["obstacles"][0]["name"]) << g.name;
-    if (mode == SimMode::Adaptive) {
-      ASSERT_EQ(first_crossing(part), "") << "at the start of the pre-roll";
-      while (run.frame() < 0) run.step_frame();
-      ASSERT_EQ(first_crossing(part), "") << "after the pre-roll";
-      ResumePoint point;
-      for (std::size_t g = 0; g < part.scene().garments.size(); ++g) {
-        point.names.push_back(part.scene().garments[g].name);
-        point.garments.push_back(part.garment_mesh(g));
-      }
-      after_preroll.push_back(std::move(point));
-    }
-    ASSERT_EQ(run.frame(), 0);
-    std::vector<double> seconds;
-    for (int f = 0; f < 40; ++f) {
-      const FrameStats s = run.step_frame();
-      seconds.push_back(s.seconds);
-      ASSERT_EQ(first_crossing(part), "") << sim_mode_name(mode) << " frame " << s.frame;
-      EXPECT_EQ(s.collision_fallbacks, 0) << sim_mode_name(mode) << " frame " << s.frame;
-    }
-    std::vector<double> sorted = seconds;
-    std::sort(sorted.begin(), sorted.end());
-    EXPECT_LT(sorted.back(), 20 * sorted[sorted.size() / 2]) << sim_mode_name(mode);
-  }
+  Ensemble view(load_scene(path), SimOptions{SimMode::View, 1}, Simulation::Log{}, {meshes_now(adaptive)}, "the adaptive pre-roll");
+  forty_frames_clear(adaptive, SimMode::Adaptive);
+  forty_frames_clear(view, SimMode::View);
   std::filesystem::remove_all(dir);
 }
 
