@@ -3,53 +3,81 @@
 #include "scene/body.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <string>
 
 #include "collision/distance.hpp"
 #include "core/isosurface.hpp"
-#include "scene/joint_names.hpp"
+#include "scene/humanoid.hpp"
 
 namespace vdc {
 
 namespace {
 
 struct Bone {
-  int joint;     // the child joint: the bone runs from its parent to it
-  Vec3 a, b;     // rest positions of the parent and child joints
+  int joint;     // the child joint: the bone runs from its parent to it (or on to the limb's next joint)
+  Vec3 a, b;     // positions of the parent joint and the joint the bone ends at
   double ra, rb; // radii at a and b
 };
 
-bool has(const std::string& name, const char* word) {
-  std::string lower = name;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return lower.find(word) != std::string::npos;
+// Radii at the two ends of the bone from joint `owner` to its child (BVH: a joint's bone runs to
+// its child) by their parts of the body, for a figure of about 1.75 m.
+std::pair<double, double> limb_radii(BodyPart owner, BodyPart child, bool child_is_end_site) {
+  using P = BodyPart;
+  switch (owner) {
+    case P::Finger: return {0, 0};
+    case P::Hand: return child_is_end_site ? std::pair{0.032, 0.025} : std::pair{0.0, 0.0};  // to the fingers: theirs, none
+    case P::Head: return {0.095, 0.09};
+    case P::Neck: return {0.05, 0.05};
+    case P::HipJoint: return {0.11, 0.09};
+    case P::Hips: return child == P::HipJoint || child == P::Thigh ? std::pair{0.11, 0.09} : std::pair{0.13, 0.13};
+    case P::Spine:
+      if (child == P::Neck || child == P::Head) return {0.14, 0.07};
+      if (child == P::Clavicle) return {0.08, 0.06};
+      return {0.13, 0.14};
+    case P::Clavicle: return {0.06, 0.05};
+    case P::ForeArm: return {0.04, 0.032};
+    case P::Thigh: return {0.085, 0.06};
+    case P::Toe: return {0.03, 0.025};
+    case P::Foot: return {0.045, 0.035};
+    case P::Shin: return {0.06, 0.045};
+    case P::UpperArm: return {0.05, 0.04};
+    default: return {0.04, 0.035};
+  }
 }
 
-// Radii at the two ends of the bone from joint `owner` to its child `child` (BVH: a joint's
-// bone runs to its child), for a figure of about 1.75 m, by the usual joint names.
-std::pair<double, double> limb_radii(const std::string& owner, const std::string& child) {
-  if (has(owner, "finger") || has(owner, "thumb") || has(owner, "index") || has(child, "finger") || has(child, "thumb")) return {0, 0};
-  if (has(owner, "head")) return {0.095, 0.09};
-  if (has(owner, "neck")) return {0.05, 0.05};
-  if (has(owner, "hipjoint") || ((has(owner, "hips") || has(owner, "pelvis") || has(owner, "root")) && (has(child, "upleg") || has(child, "hip") || has(child, "thigh"))))
-    return {0.11, 0.09};
-  if (has(owner, "hips") || has(owner, "pelvis") || has(owner, "root")) return {0.13, 0.13};
-  if (has(owner, "spine") || has(owner, "chest") || has(owner, "back")) {
-    if (has(child, "neck")) return {0.14, 0.07};
-    if (has(child, "shoulder") || has(child, "collar") || has(child, "clavicle")) return {0.08, 0.06};
-    return {0.13, 0.14};
-  }
-  if (has(owner, "shoulder") || has(owner, "collar") || has(owner, "clavicle")) return {0.06, 0.05};
-  if (has(owner, "forearm")) return {0.04, 0.032};
-  if (has(owner, "hand")) return {0.032, 0.025};
-  if (has(owner, "upleg") || has(owner, "thigh")) return {0.085, 0.06};
-  if (has(owner, "toe")) return {0.03, 0.025};
-  if (has(owner, "foot") || has(owner, "ankle")) return {0.045, 0.035};
-  if (has(owner, "leg") || has(owner, "shin") || has(owner, "knee")) return {0.06, 0.045};
-  if (has(owner, "arm")) return {0.05, 0.04};
-  return {0.04, 0.035};
+// Every joint's part of the body, the order its bones are blended in (the smooth union depends
+// on it) and where each bone ends: a humanoid's parts in the figure's order, so that its joints'
+// names and order in the file change nothing, and one bone from a limb's joint to the next
+// (shoulder to elbow, elbow to wrist, hip to knee, knee to ankle) past the joints that only
+// twist it, which would bulge the union where two bones meet; else no parts, the file's order
+// and a bone to every joint.
+struct BodyPlan {
+  std::vector<BodyPart> parts;
+  std::vector<int> order;
+  std::vector<int> bone_to;  // per joint: where the bone from its parent ends; -1 for none
+};
+
+BodyPlan body_plan(const Skeleton& skeleton) {
+  const std::size_t n = skeleton.joints.size();
+  HumanoidRecognition figure = recognise_humanoid(skeleton);
+  BodyPlan plan{std::vector<BodyPart>(n, BodyPart::Other), std::vector<int>(n), std::vector<int>(n)};
+  for (std::size_t j = 0; j < n; ++j) plan.order[j] = plan.bone_to[j] = static_cast<int>(j);
+  if (!figure.humanoid) return plan;
+  const Humanoid& h = *figure.humanoid;
+  plan.parts = h.parts;
+  plan.order = figure_order(skeleton, h);
+  std::vector<char> twists(n, 0);
+  for (const auto* limbs : {&h.arms, &h.legs})
+    for (const Limb& limb : *limbs)
+      for (const auto& [from, to] : {std::pair{limb.root, limb.bend}, std::pair{limb.bend, limb.end}})
+        for (int j = skeleton.joints[static_cast<std::size_t>(to)].parent; j != from; j = skeleton.joints[static_cast<std::size_t>(j)].parent) {
+          twists[static_cast<std::size_t>(j)] = 1;
+          if (skeleton.joints[static_cast<std::size_t>(j)].parent == from) plan.bone_to[static_cast<std::size_t>(j)] = to;
+        }
+  for (std::size_t j = 0; j < n; ++j)
+    if (skeleton.joints[j].parent >= 0 && twists[static_cast<std::size_t>(skeleton.joints[j].parent)]) plan.bone_to[j] = -1;
+  return plan;
 }
 
 double smooth_min(double a, double b, double k) {
@@ -66,14 +94,16 @@ double capsule(const Bone& bone, const Vec3& p) {
 }
 
 // The capsules of a skeleton's bones in a pose (world transforms of its joints), at `build`.
-std::vector<Bone> bones_in(const Skeleton& skeleton, const std::vector<Eigen::Isometry3d>& world, double build) {
+std::vector<Bone> bones_in(const Skeleton& skeleton, const BodyPlan& plan, const std::vector<Eigen::Isometry3d>& world, double build) {
   std::vector<Bone> bones;
-  for (std::size_t j = 0; j < skeleton.joints.size(); ++j) {
-    const int parent = skeleton.joints[j].parent;
-    if (parent < 0) continue;
-    auto [ra, rb] = limb_radii(skeleton.joints[static_cast<std::size_t>(parent)].name, skeleton.joints[j].name);
+  for (const int joint : plan.order) {
+    const auto j = static_cast<std::size_t>(joint);
+    const int parent = skeleton.joints[j].parent, to = plan.bone_to[j];
+    if (parent < 0 || to < 0) continue;
+    auto [ra, rb] = limb_radii(plan.parts[static_cast<std::size_t>(parent)], plan.parts[j], skeleton.joints[j].end_site);
     if (ra <= 0) continue;
-    Bone b{static_cast<int>(j), world[static_cast<std::size_t>(parent)].translation(), world[j].translation(), build * ra, build * rb};
+    Bone b{static_cast<int>(j), world[static_cast<std::size_t>(parent)].translation(), world[static_cast<std::size_t>(to)].translation(), build * ra,
+           build * rb};
     if ((b.b - b.a).norm() < 1e-6) continue;
     bones.push_back(b);
   }
@@ -84,22 +114,22 @@ std::vector<Bone> bones_in(const Skeleton& skeleton, const std::vector<Eigen::Is
 
 double build_clearing_arms(const Motion& motion, const std::vector<Pose>& poses, double clearance) {
   const Skeleton& skeleton = motion.skeleton;
+  const HumanoidRecognition figure = recognise_humanoid(skeleton);
+  if (!figure.humanoid) return 1.0;
+  const BodyPlan plan = body_plan(skeleton);
   std::vector<int> arms, shoulders_and_head;
-  for (const char* side : {"Left", "Right"}) {
-    const std::optional<int> arm = find_joint(skeleton, std::string(side) + "Arm");
-    if (!arm) return 1.0;
-    arms.push_back(*arm);
-    const std::optional<int> shoulder = find_joint(skeleton, std::string(side) + "Shoulder");
-    shoulders_and_head.push_back(shoulder ? *shoulder : *arm);
+  for (const Limb& arm : figure.humanoid->arms) {
+    arms.push_back(arm.root);
+    shoulders_and_head.push_back(arm.girdle >= 0 ? arm.girdle : arm.root);
   }
-  if (const std::optional<int> neck = find_joint(skeleton, "Neck")) shoulders_and_head.push_back(*neck);
+  shoulders_and_head.push_back(figure.humanoid->neck >= 0 ? figure.humanoid->neck : figure.humanoid->head);
   // Per joint: 1 an arm's, 2 a shoulder's, the neck's or the head's, 0 the torso's or a leg's.
   const std::vector<char> in_arm = joints_below(skeleton, arms), in_upper = joints_below(skeleton, shoulders_and_head);
   std::vector<int> part(skeleton.joints.size(), 0);
   for (std::size_t j = 0; j < part.size(); ++j) part[j] = in_arm[j] ? 1 : in_upper[j] ? 2 : 0;
   double build = 1.0;
   for (const Pose& pose : poses) {
-    const std::vector<Bone> bones = bones_in(skeleton, motion.world(pose), 1.0);
+    const std::vector<Bone> bones = bones_in(skeleton, plan, motion.world(pose), 1.0);
     for (const Bone& arm : bones) {
       // A bone moves with its owner, the parent of the joint it runs to.
       if (part[static_cast<std::size_t>(skeleton.joints[static_cast<std::size_t>(arm.joint)].parent)] != 1) continue;
@@ -132,7 +162,7 @@ Body::Body(const Motion& motion, const BodyParams& params, MeshSource skin) : Bo
 Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin, BodyMeshCache* cache) : motion_(motion) {
   const auto& joints = motion.skeleton.joints;
   const std::vector<Eigen::Isometry3d> rest = motion.world(rest_pose(motion.skeleton));
-  const std::vector<Bone> bones = bones_in(motion.skeleton, rest, params.build);
+  const std::vector<Bone> bones = bones_in(motion.skeleton, body_plan(motion.skeleton), rest, params.build);
   Aabb box;
   for (const Bone& b : bones)
     for (const Vec3& p : {b.a, b.b}) box.grow(p);

@@ -21,10 +21,10 @@ struct BodyParams {
 inline constexpr double kSlimmestBuild = 0.6;
 
 // The largest build, at most 1 and at least kSlimmestBuild, at which the arms' capsules (from the
-// LeftArm and RightArm joints down, found by find_joint) keep `clearance` (m) from the torso's
-// and legs' (all but the shoulders', neck's and head's) in each of `poses`: a slender
-// capture's arms, hanging at its sides, would otherwise pass through a body made for the
-// project's figure, and no cloth could lie between. 1 for a skeleton without arms.
+// upper arms down, scene/humanoid.hpp) keep `clearance` (m) from the torso's and legs' (all but
+// the clavicles', neck's and head's) in each of `poses`: a slender capture's arms, hanging at
+// its sides, would otherwise pass through a body made for the project's figure, and no cloth
+// could lie between. 1 for a skeleton that is not a humanoid's.
 double build_clearing_arms(const Motion& motion, const std::vector<Pose>& poses, double clearance);
 
 // Procedural rest meshes already polygonized, by the capsules and parameters they were made

@@ -51,6 +51,13 @@ class Reader {
     static const std::string empty;
     return done() ? empty : tokens_[pos_].text;
   }
+  // A name: the next token and the rest of its line up to a '{' ("Bip01 L Thigh").
+  std::string name(const std::string& what) {
+    const Token& first = next(what);
+    std::string out = first.text;
+    while (!done() && tokens_[pos_].line == first.line && tokens_[pos_].text != "{") out += " " + tokens_[pos_++].text;
+    return out;
+  }
   void expect(const std::string& word) {
     const Token& t = next("'" + word + "'");
     if (t.text != word) fail(t.line, "expected '" + word + "', found '" + t.text + "'");
@@ -111,7 +118,7 @@ void parse_joint(Reader& r, Skeleton& s, const std::string& name, int parent, in
   while (r.peek() != "}") {
     const Token& t = r.next("JOINT, End Site or '}'");
     if (t.text == "JOINT") {
-      parse_joint(r, s, r.next("a joint name").text, index, depth + 1);
+      parse_joint(r, s, r.name("a joint name"), index, depth + 1);
     } else if (t.text == "End") {
       r.expect("Site");
       r.expect("{");
@@ -131,7 +138,7 @@ Motion parse_bvh(const std::string& text, const std::string& name) {
   Motion m;
   r.expect("HIERARCHY");
   r.expect("ROOT");
-  parse_joint(r, m.skeleton, r.next("the root's name").text, -1, 0);
+  parse_joint(r, m.skeleton, r.name("the root's name"), -1, 0);
   r.expect("MOTION");
   r.expect("Frames:");
   const int frames_line = r.line();

@@ -5,17 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "scene/joint_names.hpp"
+#include "scene/humanoid.hpp"
 
 namespace vdc {
 
 namespace {
-
-int joint_or_throw(const Skeleton& skeleton, const std::string& name) {
-  const std::optional<int> j = find_joint(skeleton, name);
-  if (!j) throw std::invalid_argument(name);
-  return *j;
-}
 
 Mat3 turn_about_y(double angle) { return Eigen::AngleAxisd(angle, Vec3::UnitY()).toRotationMatrix(); }
 
@@ -72,13 +66,14 @@ FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshS
   m.heading = heading(world.front());
   const Mat3 unturn = turn_about_y(-m.heading);
   auto local = [&](const Vec3& p) -> Vec3 { return unturn * (p - m.axis); };
-  auto at = [&](const std::string& name) { return local(world[static_cast<std::size_t>(joint_or_throw(skeleton, name))].translation()); };
+  const Humanoid figure = humanoid_of(skeleton);
+  auto at = [&](int joint) { return local(world[static_cast<std::size_t>(joint)].translation()); };
 
   double lowest = INFINITY;
   for (const auto& w : world) lowest = std::min(lowest, local(w.translation()).y());
-  const Vec3 left_arm = at("LeftArm"), right_arm = at("RightArm");
-  m.landmarks = {lowest, 0.5 * (at("LeftLeg").y() + at("RightLeg").y()), 0.5 * (at("LeftUpLeg").y() + at("RightUpLeg").y()),
-                 0.5 * (left_arm.y() + right_arm.y()), at("Head").y()};
+  const Vec3 left_arm = at(figure.arms[0].root), right_arm = at(figure.arms[1].root);
+  m.landmarks = {lowest, 0.5 * (at(figure.legs[0].bend).y() + at(figure.legs[1].bend).y()),
+                 0.5 * (at(figure.legs[0].root).y() + at(figure.legs[1].root).y()), 0.5 * (left_arm.y() + right_arm.y()), at(figure.head).y()};
   for (std::size_t k = 1; k < m.landmarks.size(); ++k)
     if (!(m.landmarks[k] > m.landmarks[k - 1] + 0.01))
       throw std::invalid_argument("its soles, knees, hips, shoulders and head are not one above the other in the pose its garments are made in");
@@ -87,11 +82,8 @@ FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshS
 
   // Arms (from the collarbones, where the skeleton has them) and head are not what a garment's
   // rings go around.
-  auto arm = [&](const std::string& shoulder, const std::string& arm_joint) {
-    const std::optional<int> s = find_joint(skeleton, shoulder);
-    return s ? *s : joint_or_throw(skeleton, arm_joint);
-  };
-  const std::vector<char> left_out = joints_below(skeleton, {arm("LeftShoulder", "LeftArm"), arm("RightShoulder", "RightArm"), joint_or_throw(skeleton, "Head")});
+  auto arm = [&](const Limb& limb) { return limb.girdle >= 0 ? limb.girdle : limb.root; };
+  const std::vector<char> left_out = joints_below(skeleton, {arm(figure.arms[0]), arm(figure.arms[1]), figure.head});
   std::vector<Vec3> x(body.size());
   double lo = INFINITY, hi = -INFINITY;
   for (std::size_t v = 0; v < body.size(); ++v) {
@@ -132,7 +124,8 @@ double FigureMeasure::reach_at(double y) const {
 void measure_arm_reach(FigureMeasure& m, const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<int>& main_joints,
                        const std::vector<Pose>& moving, const std::function<std::vector<Vec3>(const Pose&)>& skin) {
   const Skeleton& skeleton = motion.skeleton;
-  const std::vector<char> arm = joints_below(skeleton, {joint_or_throw(skeleton, "LeftArm"), joint_or_throw(skeleton, "RightArm")});
+  const Humanoid figure = humanoid_of(skeleton);
+  const std::vector<char> arm = joints_below(skeleton, {figure.arms[0].root, figure.arms[1].root});
   std::vector<std::size_t> arm_faces;
   for (std::size_t f = 0; f < body_mesh.faces.size(); ++f)
     if (touches(body_mesh.faces[f], main_joints, arm)) arm_faces.push_back(f);

@@ -38,11 +38,11 @@ struct FigureMeasure {
   double reach_at(double y) const;  // the smaller of the two nearest heights' reach
 };
 
-// Measures a figure in `pose`: the skeleton's landmark joints (found by find_joint, so a
-// capture's naming scheme works) and the body (`body_mesh`'s faces, `body` its vertices in that
-// pose, `main_joints` the joint moving each most: Body::main_joints). Throws
-// std::invalid_argument naming a landmark joint the skeleton lacks, or landmarks out of order (a
-// figure not standing upright).
+// Measures a figure in `pose`: the humanoid's landmark joints (by the skeleton's shape, so any
+// naming scheme works) and the body (`body_mesh`'s faces, `body` its vertices in that pose,
+// `main_joints` the joint moving each most: Body::main_joints). Throws std::invalid_argument
+// saying why the skeleton is not a humanoid's, or that its landmarks are out of order (a figure
+// not standing upright).
 FigureMeasure measure_figure(const Motion& motion, const Pose& pose, const MeshSource& body_mesh, const std::vector<Vec3>& body,
                              const std::vector<int>& main_joints);
 

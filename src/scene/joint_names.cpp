@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "scene/humanoid.hpp"
+
 namespace vdc {
 
 std::string folded_joint_name(const std::string& name) {
@@ -19,58 +21,6 @@ std::string folded_joint_name(const std::string& name) {
   return out;
 }
 
-namespace {
-
-// The project's joints of the trunk and head, with the other schemes' names, folded, in the
-// order they are tried.
-const std::vector<std::pair<std::string, std::vector<std::string>>>& trunk_aliases() {
-  static const std::vector<std::pair<std::string, std::vector<std::string>>> table{
-      {"hips", {"pelvis", "root", "hip"}},
-      {"spine", {"lowerback", "spine0"}},
-      {"chest", {"upperchest", "spine2", "spine1"}},
-      {"neck", {"neck1"}},
-      {"head", {}},
-  };
-  return table;
-}
-
-// A limb joint of one side, with the other schemes' names without the side, in order.
-const std::vector<std::pair<std::string, std::vector<std::string>>>& limb_aliases() {
-  static const std::vector<std::pair<std::string, std::vector<std::string>>> table{
-      {"shoulder", {"collar", "clavicle"}},
-      {"arm", {"upperarm"}},
-      {"forearm", {"lowerarm", "elbow"}},
-      {"hand", {"wrist"}},
-      {"upleg", {"thigh", "upperleg"}},
-      {"leg", {"lowerleg", "shin", "knee", "calf"}},
-      {"foot", {"ankle"}},
-      {"toe", {"toebase", "toes", "ball"}},
-  };
-  return table;
-}
-
-}  // namespace
-
-std::vector<std::string> joint_aliases(const std::string& wanted) {
-  const std::string folded = folded_joint_name(wanted);
-  for (const auto& [name, others] : trunk_aliases())
-    if (folded == name) return others;
-  for (const auto& [side, short_side] : {std::pair<std::string, std::string>{"left", "l"}, {"right", "r"}}) {
-    if (folded.rfind(side, 0) != 0) continue;
-    const std::string part = folded.substr(side.size());
-    for (const auto& [name, others] : limb_aliases()) {
-      if (part != name) continue;
-      std::vector<std::string> out{short_side + name};
-      for (const std::string& other : others) {
-        out.push_back(side + other);
-        out.push_back(short_side + other);
-      }
-      return out;
-    }
-  }
-  return {};
-}
-
 std::optional<int> find_joint(const Skeleton& skeleton, const std::string& wanted) {
   const auto& joints = skeleton.joints;
   auto index_of = [&](auto matches) -> std::optional<int> {
@@ -78,12 +28,16 @@ std::optional<int> find_joint(const Skeleton& skeleton, const std::string& wante
     if (it == joints.end()) return std::nullopt;
     return static_cast<int>(it - joints.begin());
   };
+  if (auto renamed = index_of([&](const Joint& j) { return j.named_by_scene && j.name == wanted; })) return renamed;
+  const HumanoidRecognition figure = recognise_humanoid(skeleton);
+  if (figure.humanoid)
+    if (const std::optional<int> landmark = landmark_joint(*figure.humanoid, wanted)) {
+      if (*landmark < 0) return std::nullopt;
+      return landmark;
+    }
   if (auto exact = index_of([&](const Joint& j) { return j.name == wanted; })) return exact;
-  std::vector<std::string> names{folded_joint_name(wanted)};
-  for (std::string& alias : joint_aliases(wanted)) names.push_back(std::move(alias));
-  for (const std::string& name : names)
-    if (auto found = index_of([&](const Joint& j) { return !j.end_site && folded_joint_name(j.name) == name; })) return found;
-  return std::nullopt;
+  const std::string folded = folded_joint_name(wanted);
+  return index_of([&](const Joint& j) { return !j.end_site && folded_joint_name(j.name) == folded; });
 }
 
 void rename_joints(Skeleton& skeleton, const std::map<std::string, std::string>& names) {
@@ -95,18 +49,20 @@ void rename_joints(Skeleton& skeleton, const std::map<std::string, std::string>&
     if (it == skeleton.joints.end()) throw std::invalid_argument(from);
     renames.emplace_back(static_cast<std::size_t>(it - skeleton.joints.begin()), rename.second);
   }
-  for (auto& [index, to] : renames) skeleton.joints[index].name = std::move(to);
+  for (auto& [index, to] : renames) {
+    skeleton.joints[index].name = std::move(to);
+    skeleton.joints[index].named_by_scene = true;
+  }
 }
 
 std::string missing_joint(const Skeleton& skeleton, const std::string& joint) {
-  std::string msg = "the motion has no joint '" + joint + "'";
-  const std::vector<std::string> aliases = joint_aliases(joint);
-  if (!aliases.empty()) {
-    msg += " (nor";
-    for (std::size_t k = 0; k < aliases.size(); ++k) msg += (k ? ", " : " ") + aliases[k];
-    msg += ")";
+  const std::string how = " (a character's joint_names renames a capture's joints)";
+  const HumanoidRecognition figure = recognise_humanoid(skeleton);
+  if (landmark_joint(Humanoid{}, joint)) {
+    if (!figure.humanoid) return "the motion's skeleton is not a humanoid's, so it has no '" + joint + "': " + figure.why_not + how;
+    return "the motion's figure has no joint where '" + joint + "' is on the project's figure" + how;
   }
-  msg += "; its joints:";
+  std::string msg = "the motion has no joint '" + joint + "'; its joints:";
   std::size_t listed = 0;
   for (const Joint& j : skeleton.joints) {
     if (j.end_site) continue;
@@ -116,7 +72,7 @@ std::string missing_joint(const Skeleton& skeleton, const std::string& joint) {
     }
     msg += (listed++ ? ", " : " ") + j.name;
   }
-  return msg + " (a character's joint_names renames a capture's joints)";
+  return msg + how;
 }
 
 }  // namespace vdc

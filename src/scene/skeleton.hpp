@@ -20,6 +20,7 @@ struct Joint {
   std::vector<Channel> channels;  // in the order the file lists them
   int first_channel = 0;          // index of its first channel in a frame's values
   bool end_site = false;          // a BVH "End Site": a leaf point with no channels
+  bool named_by_scene = false;    // renamed by a scene's joint_names: the landmark it is named after
 };
 
 struct Skeleton {

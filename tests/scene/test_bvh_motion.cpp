@@ -66,6 +66,19 @@ TEST(BvhMotion, WholeFramesBeyondTheHeaderCountAreIgnored) {
   EXPECT_EQ(m.frames.size(), 2u);
 }
 
+// A name is the rest of its line (Biped's "Bip01 L Thigh"), up to a brace on the same line.
+TEST(BvhMotion, NamesRunToTheEndOfTheirLine) {
+  std::string text = kChain;
+  text.replace(text.find("ROOT Root\n{"), 11, "ROOT Bip01 {");
+  text.replace(text.find("JOINT Child"), 11, "JOINT Bip01 L  Thigh");
+  const Motion m = parse_bvh(text, "biped.bvh");
+  ASSERT_EQ(m.skeleton.joints.size(), 3u);
+  EXPECT_EQ(m.skeleton.joints[0].name, "Bip01");
+  EXPECT_EQ(m.skeleton.joints[1].name, "Bip01 L Thigh");
+  EXPECT_EQ(m.skeleton.joints[2].name, "Bip01 L Thigh_end");
+  EXPECT_EQ(m.frames, parse_bvh(kChain, "chain.bvh").frames);
+}
+
 TEST(BvhMotion, WriterRoundTrips) {
   Motion m = parse_bvh(kChain, "chain.bvh");
   const std::string path = (std::filesystem::temp_directory_path() / ("vdcloth_chain_" + std::to_string(::getpid()) + ".bvh")).string();

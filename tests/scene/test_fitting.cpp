@@ -106,15 +106,19 @@ TEST(Fitting, HeightsFollowTheLandmarksAndTheEaseIsKept) {
   EXPECT_LT(fit.fit(dress, 0.3).bodice_radius, fitted.bodice_radius - 0.01);
 }
 
-TEST(Fitting, AFigureWithoutLandmarksIsNamed) {
+TEST(Fitting, AFigureThatIsNotAHumanoidsSaysWhy) {
   Skeleton skeleton = figure_skeleton();
   for (Joint& j : skeleton.joints)
-    if (j.name == "LeftLeg") j.name = "LeftTibia";  // a name no scheme gives the knee
+    if (j.name == "LeftLeg") j.name = "LeftTibia";  // a name no scheme gives the knee: the shape finds it
+  EXPECT_NO_THROW(measured(at_rest(skeleton), 1.0));
+  while (skeleton.joints.back().name != "RightUpLeg") skeleton.joints.pop_back();  // the right leg's joints are the last
+  skeleton.joints.pop_back();
+  skeleton.num_channels = skeleton.joints.back().first_channel + static_cast<int>(skeleton.joints.back().channels.size());
   try {
     measured(at_rest(skeleton), 1.0);
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "LeftLeg");
+    EXPECT_STREQ(e.what(), "its skeleton is not a humanoid's: no joint where two legs and a spine part (the hips) below one where two arms and a neck part (the chest)");
   }
 }
 
@@ -122,7 +126,8 @@ TEST(Fitting, ASlenderFiguresBuildKeepsItsArmsClear) {
   // A torso bone straight up from (0, 1, 0) to (0, 1.5, 0), 0.13 m thick; collarbones out to
   // shoulders at x = +-0.15; upper arms from there down and out to (+-0.25, 1.1, 0), 0.05 to
   // 0.04 m thick. The shoulder is nearest the torso: 0.15 m between the axes, 0.18 m of radii,
-  // so the arms keep 1 cm at a build of (0.15 - 0.01) / 0.18.
+  // so the arms keep 1 cm at a build of (0.15 - 0.01) / 0.18. (A neck, hands and legs make it a
+  // humanoid; none comes nearer the arms.)
   Skeleton k;
   auto add = [&](const std::string& name, int parent, Vec3 offset, bool end = false) {
     Joint j;
@@ -138,12 +143,16 @@ TEST(Fitting, ASlenderFiguresBuildKeepsItsArmsClear) {
   };
   const int hips = add("Hips", -1, Vec3(0, 1, 0));
   const int spine = add("Spine", hips, Vec3(0, 0.5, 0));
+  const int neck = add("Neck", spine, Vec3(0, 0.1, 0));
+  add("Head_end", add("Head", neck, Vec3(0, 0.1, 0)), Vec3(0, 0.2, 0), true);
   for (int side : {1, -1}) {
     const std::string p = side > 0 ? "Left" : "Right";
-    const int shoulder = add(p + "Shoulder", spine, Vec3(side * 0.1, 0, 0));
-    const int arm = add(p + "Arm", shoulder, Vec3(side * 0.05, 0, 0));
+    const int shoulder = add(p + "Shoulder", spine, Vec3(side * 0.02, 0, 0));
+    const int arm = add(p + "Arm", shoulder, Vec3(side * 0.13, 0, 0));
     const int fore = add(p + "ForeArm", arm, Vec3(side * 0.1, -0.4, 0));
-    add(p + "Hand", fore, Vec3(side * 0.1, -0.3, 0), true);
+    add(p + "Hand_end", add(p + "Hand", fore, Vec3(side * 0.1, -0.3, 0)), Vec3(side * 0.03, -0.06, 0), true);
+    const int leg = add(p + "Leg", add(p + "UpLeg", hips, Vec3(side * 0.08, -0.05, 0)), Vec3(0, -0.42, 0));
+    add(p + "Foot_end", add(p + "Foot", leg, Vec3(0, -0.42, 0)), Vec3(0, -0.05, 0.12), true);
   }
   const Motion m = at_rest(k);
   EXPECT_NEAR(build_clearing_arms(m, {Body::rest_pose(k)}, 0.01), 0.14 / 0.18, 1e-12);
