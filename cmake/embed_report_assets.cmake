@@ -1,4 +1,4 @@
-# Run at build time (cmake -P): writes OUT, a C++ source defining vdc::report_assets() with the
+# Run when cmake configures (cmake -P, from CMakeLists.txt): writes OUT, a C++ source defining vdc::report_assets() with the
 # text of each of FILES (paths separated by ","), named by its file name.
 #   -DFILES=a,b,c -DOUT=file.cpp
 cmake_minimum_required(VERSION 3.22)
