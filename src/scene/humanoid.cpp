@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include "scene/joint_names.hpp"
 
@@ -359,6 +360,42 @@ std::vector<int> figure_order(const Skeleton& skeleton, const Humanoid& humanoid
     stack.insert(stack.end(), next.rbegin(), next.rend());
   }
   return order;
+}
+
+std::vector<int> mirror_partners(const Skeleton& skeleton, const Humanoid& humanoid) {
+  const Shape shape(skeleton);
+  std::vector<std::vector<int>> children(skeleton.joints.size());
+  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
+    if (skeleton.joints[j].parent >= 0) children[static_cast<std::size_t>(skeleton.joints[j].parent)].push_back(static_cast<int>(j));
+  // Children in an order a mirror image keeps: farther reaching first, then by their offset's
+  // height, depth and distance from the middle.
+  auto ordered = [&](int j) {
+    std::vector<int> out = children[static_cast<std::size_t>(j)];
+    auto key = [&](int c) {
+      const Vec3& o = skeleton.joints[static_cast<std::size_t>(c)].offset;
+      return std::tuple(-shape.reach_from_parent(c), o.y(), o.z(), std::abs(o.x()));
+    };
+    std::stable_sort(out.begin(), out.end(), [&](int a, int b) { return key(a) < key(b); });
+    return out;
+  };
+  std::vector<int> partner(skeleton.joints.size());
+  for (std::size_t j = 0; j < partner.size(); ++j) partner[j] = static_cast<int>(j);
+  std::vector<std::pair<int, int>> pairs;
+  auto first = [](const Limb& limb) { return limb.girdle >= 0 ? limb.girdle : limb.root; };
+  for (const auto* limbs : {&humanoid.arms, &humanoid.legs}) pairs.emplace_back(first((*limbs)[0]), first((*limbs)[1]));
+  while (!pairs.empty()) {
+    const auto [a, b] = pairs.back();
+    pairs.pop_back();
+    partner[static_cast<std::size_t>(a)] = b;
+    partner[static_cast<std::size_t>(b)] = a;
+    const std::vector<int> left = ordered(a), right = ordered(b);
+    if (left.size() != right.size())
+      throw std::invalid_argument("joints '" + skeleton.joints[static_cast<std::size_t>(a)].name + "' and '" +
+                                  skeleton.joints[static_cast<std::size_t>(b)].name + "', one the other's mirror image, have " +
+                                  std::to_string(left.size()) + " and " + std::to_string(right.size()) + " joints below them");
+    for (std::size_t k = 0; k < left.size(); ++k) pairs.emplace_back(left[k], right[k]);
+  }
+  return partner;
 }
 
 Humanoid humanoid_of(const Skeleton& skeleton) {

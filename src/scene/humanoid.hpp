@@ -46,6 +46,11 @@ Humanoid humanoid_of(const Skeleton& skeleton);
 // farther reaching first among equals). The project's figures list their joints so.
 std::vector<int> figure_order(const Skeleton& skeleton, const Humanoid& humanoid);
 
+// Each joint's mirror image: the joint at the same place in the other side's limb (the two
+// limbs' trees matched child by child, the farther reaching first), itself on the trunk, neck and
+// head. Throws std::invalid_argument naming two matched joints whose trees differ.
+std::vector<int> mirror_partners(const Skeleton& skeleton, const Humanoid& humanoid);
+
 // The project's name of a landmark (Hips, Spine, Chest, Neck, Head; LeftShoulder, LeftArm,
 // LeftForeArm, LeftHand, LeftUpLeg, LeftLeg, LeftFoot, LeftToe and the Right ones; compared
 // folded, so "left_arm" is LeftArm) -> its joint in `humanoid`: -1 when the figure has none (no

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "scene/humanoid.hpp"
+
 namespace vdc {
 
 Pose Motion::frame_pose(std::size_t i) const {
@@ -98,19 +100,33 @@ std::string partner_name(const std::string& name) {
   return out;
 }
 
+// Each joint's partner by name: Left and Right swapped (for a skeleton that is not a humanoid's).
+std::vector<std::size_t> partners_by_name(const std::vector<Joint>& joints) {
+  std::vector<std::size_t> partner(joints.size());
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const std::string wanted = partner_name(joints[j].name);
+    const auto it = std::find_if(joints.begin(), joints.end(), [&](const Joint& x) { return x.name == wanted; });
+    if (it == joints.end()) throw std::invalid_argument("joint '" + joints[j].name + "' has no partner '" + wanted + "'");
+    partner[j] = static_cast<std::size_t>(it - joints.begin());
+  }
+  return partner;
+}
+
 }  // namespace
 
 // The mirror image of a motion (a reflection of its figure, e.g. for a crowd's copies).
 Motion mirrored(const Motion& motion) {
   const auto& joints = motion.skeleton.joints;
-  std::vector<std::size_t> partner(joints.size());
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    const std::string wanted = partner_name(joints[j].name);
-    const auto it = std::find_if(joints.begin(), joints.end(), [&](const Joint& x) { return x.name == wanted; });
-    if (it == joints.end() || it->channels != joints[j].channels || (it->parent < 0) != (joints[j].parent < 0))
-      throw std::invalid_argument("joint '" + joints[j].name + "' has no partner '" + wanted + "' with the same channels");
-    partner[j] = static_cast<std::size_t>(it - joints.begin());
+  std::vector<std::size_t> partner;
+  const HumanoidRecognition figure = recognise_humanoid(motion.skeleton);
+  if (figure.humanoid) {
+    for (int p : mirror_partners(motion.skeleton, *figure.humanoid)) partner.push_back(static_cast<std::size_t>(p));
+  } else {
+    partner = partners_by_name(joints);
   }
+  for (std::size_t j = 0; j < joints.size(); ++j)
+    if (joints[partner[j]].channels != joints[j].channels || (joints[partner[j]].parent < 0) != (joints[j].parent < 0))
+      throw std::invalid_argument("joint '" + joints[j].name + "' and its mirror image '" + joints[partner[j]].name + "' differ in channels");
   Motion out = motion;
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const Joint& from = joints[partner[j]];

@@ -59,10 +59,11 @@ std::vector<char> joints_below(const Skeleton& skeleton, const std::vector<int>&
 void scale_lengths(Motion& motion, double factor);
 
 // The motion's mirror image across the skeleton's x = 0 plane (its left-right plane for a
-// figure facing +z): each joint moves as its partner (Left... and Right... swapped in the name)
-// did, reflected: x offsets and x translations negated, rotations about y and z negated
-// (M R M with M = diag(-1, 1, 1) keeps the channels' order). Throws std::invalid_argument naming
-// a joint without a partner of the same channels.
+// figure facing +z): each joint moves as its partner did, reflected: x offsets and x translations
+// negated, rotations about y and z negated (M R M with M = diag(-1, 1, 1) keeps the channels'
+// order). A humanoid's partners are by shape (mirror_partners, scene/humanoid.hpp), another
+// skeleton's by name (Left... and Right... swapped). Throws std::invalid_argument naming a joint
+// without a partner of the same channels.
 Motion mirrored(const Motion& motion);
 
 // A motion played in a scene: scene time t shows motion time (t - start) * speed.

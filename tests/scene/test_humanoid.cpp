@@ -1,8 +1,8 @@
 // Humanoids recognised by shape: the project's figure, CMU's captures and a capture of the
 // Collar-Shoulder-Elbow-Wrist scheme (assimp-testmodels) give each landmark the joint a person
 // would; the same skeletons with meaningless names and their joints in another order give the
-// same joints; Biped's tree and twist joints are recognised; a skeleton with one leg is not a
-// humanoid, and says so.
+// same joints and mirror alike; Biped's tree and twist joints are recognised; a skeleton with
+// one leg is not a humanoid, and says so.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -132,6 +132,25 @@ TEST(Humanoid, ASkeletonThatIsNotAHumanoidsSaysWhatIsMissing) {
   EXPECT_THROW(humanoid_of(one_leg), std::invalid_argument);
   // A joint of its own name is still found; a landmark is not, though a joint bears its name.
   EXPECT_EQ(find_joint(one_leg, "Chest"), 2);
+}
+
+// A capture of meaningless names in another order mirrors as the original does: each joint
+// where its partner by shape was, reflected in x = 0.
+TEST(Humanoid, AFigureOfAnyNamesHasItsMirrorImage) {
+  const Motion dance = read_bvh(std::string(VDCLOTH_SOURCE_DIR) + "/motions/dance.bvh");
+  std::vector<int> moved_to;
+  const Motion renamed = renamed_and_reordered(dance, &moved_to);
+  const Motion mirror = mirrored(dance), renamed_mirror = mirrored(renamed);
+  for (std::size_t f : {std::size_t{0}, dance.frames.size() / 2}) {
+    const auto a = mirror.world(mirror.frame_pose(f)), b = renamed_mirror.world(renamed_mirror.frame_pose(f));
+    for (std::size_t j = 0; j < a.size(); ++j)
+      EXPECT_LT((a[j].translation() - b[static_cast<std::size_t>(moved_to[j])].translation()).norm(), 1e-9) << dance.skeleton.joints[j].name;
+  }
+  const Humanoid h = *recognise_humanoid(dance.skeleton).humanoid;
+  const std::vector<int> partner = mirror_partners(dance.skeleton, h);
+  EXPECT_EQ(partner[static_cast<std::size_t>(*find_joint(dance.skeleton, "LeftForeArm"))], *find_joint(dance.skeleton, "RightForeArm"));
+  EXPECT_EQ(partner[static_cast<std::size_t>(*find_joint(dance.skeleton, "RightToe"))], *find_joint(dance.skeleton, "LeftToe"));
+  EXPECT_EQ(partner[static_cast<std::size_t>(*find_joint(dance.skeleton, "Head"))], *find_joint(dance.skeleton, "Head"));
 }
 
 // A scene's joint_names decide over the shape: the clavicle renamed LeftArm is the left arm.

@@ -131,13 +131,25 @@ TEST(Crowd, AMirroredMotionMovesEachJointAsItsPartnerReflected) {
   const Motion twice = mirrored(mirror);
   EXPECT_EQ(twice.frames, dance.frames);
   for (std::size_t j = 0; j < joints.size(); ++j) EXPECT_EQ(twice.skeleton.joints[j].offset, joints[j].offset);
+  // The partners are found by the figure's shape: a name changes nothing, a hand holding a prop
+  // the other does not hold has no mirror image.
+  Motion renamed = dance;
+  renamed.skeleton.joints[index("RightArm")].name = "RightWing";
+  EXPECT_EQ(mirrored(renamed).frames, mirror.frames);
   Motion one_sided = dance;
-  one_sided.skeleton.joints[index("RightArm")].name = "RightWing";
+  Joint prop;
+  prop.name = "Sword";
+  prop.parent = static_cast<int>(index("RightHand"));
+  prop.offset = Vec3(-0.1, 0, 0);
+  prop.first_channel = one_sided.skeleton.num_channels;
+  one_sided.skeleton.joints.push_back(prop);
   try {
     mirrored(one_sided);
-    ADD_FAILURE() << "mirrored a figure with a left arm and no right one";
+    ADD_FAILURE() << "mirrored a figure with a sword in its right hand and none in its left";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("LeftArm"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("joints 'LeftHand' and 'RightHand', one the other's mirror image, have 1 and 2 joints below them"),
+              std::string::npos)
+        << e.what();
   }
   // A crowd mirrors every other copy, every copy, or copies drawn from its seed.
   const auto alternate = copies_of(R"({"name": "m", "count": 4, "layout": {"grid": {}}, "mirror": "alternate", "template": {}})");
