@@ -25,6 +25,18 @@ namespace {
 
 using test::first_crossing;
 
+// The garments' meshes of a run's one part, as a run resumed from them takes them.
+ResumePoint meshes_now(const Ensemble& run) {
+  const Simulation& part = *run.parts().front();
+  ResumePoint point;
+  point.frame = run.frame();
+  for (std::size_t g = 0; g < part.scene().garments.size(); ++g) {
+    point.names.push_back(part.scene().garments[g].name);
+    point.garments.push_back(part.garment_mesh(g));
+  }
+  return point;
+}
+
 Scene character_scene(const std::string& name, double test_fixed_size) {
   Scene scene = load_scene(std::string(VDCLOTH_SOURCE_DIR) + "/scenes/" + name + ".json");
   // The test's fixed mesh: the scenes' baseline is their 10 mm size_min, minutes a frame.
@@ -34,16 +46,20 @@ Scene character_scene(const std::string& name, double test_fixed_size) {
 
 // One scene in one mode, the first `frames` frames. ctest runs two tests at a time on CI's two
 // cores, so each run takes one thread, except the crowd, whose parts share the two.
+// `then_view`: an adaptive run then checks the view run too, from its own meshes where the view
+// settles (until then a view run sizes as the adaptive run does) to the same frame.
 struct CharacterRun {
   std::string scene;
   SimMode mode;
   int frames;
   double test_fixed_size;
   int threads;
+  bool then_view = false;
 };
 
 void PrintTo(const CharacterRun& run, std::ostream* os) {
-  *os << run.scene << " " << sim_mode_name(run.mode) << ", " << run.frames << " frames, " << run.threads << " threads";
+  *os << run.scene << " " << sim_mode_name(run.mode) << (run.then_view ? " then view" : "") << ", " << run.frames << " frames, " << run.threads
+      << " threads";
 }
 
 std::string run_name(const testing::TestParamInfo<CharacterRun>& info) {
@@ -61,22 +77,34 @@ TEST_P(CharacterShot, NoGarmentCrossesABodyAnotherGarmentOrItselfAtAnyFrameEnd) 
   // A view run shorter than the scene's settle would be the adaptive run throughout: coarsen
   // from the first frame, so that what is checked is the view's coarse cloth.
   if (p.frames * scene.frame_time <= scene.view.settle) scene.view.settle = 0;
+  const int settle = static_cast<int>(scene.view.settle_frames(scene.frame_time));
   Ensemble run(std::move(scene), SimOptions{p.mode, p.threads});
   for (const auto& part : run.parts()) ASSERT_EQ(first_crossing(*part), "") << "at the start";
+  std::optional<ResumePoint> settled;
   for (int f = 0; f < p.frames; ++f) {
+    if (p.then_view && run.frame() == settle) settled = meshes_now(run);
     const FrameStats s = run.step_frame();
     for (const auto& part : run.parts()) ASSERT_EQ(first_crossing(*part), "") << "frame " << s.frame;
+  }
+  if (!p.then_view) return;
+  ASSERT_TRUE(settled) << "the view settles after the run's last frame";
+  Ensemble view(character_scene(p.scene, p.test_fixed_size), SimOptions{SimMode::View, p.threads}, Simulation::Log{}, {*settled},
+                "the adaptive run where the view settles");
+  while (view.frame() < p.frames) {
+    const FrameStats s = view.step_frame();
+    for (const auto& part : view.parts()) ASSERT_EQ(first_crossing(*part), "") << "view, frame " << s.frame;
   }
 }
 
 // karate's three layers stay ordered; the solo dress and the ten dresses never cross anything.
+// karate's view run (settling at frame 12) goes on from its adaptive run's frame 12.
 // solo-dancer's adaptive and view runs are ViewFidelity's (test_view_fidelity.cpp), which checks
 // both for crossings at every frame end over 25 frames as it checks the straps, its view run
 // switching to coarse at frame 5 (the view runs here at the scenes' settle, frame 12).
 std::vector<CharacterRun> character_runs() {
   std::vector<CharacterRun> runs;
   for (SimMode mode : {SimMode::Fixed, SimMode::Adaptive, SimMode::View}) {
-    runs.push_back({"karate", mode, 20, 0.05, 1});
+    if (mode != SimMode::View) runs.push_back({"karate", mode, 20, 0.05, 1, mode == SimMode::Adaptive});
     if (mode == SimMode::Fixed) runs.push_back({"solo-dancer", mode, 20, 0.05, 1});
     runs.push_back({"dancers-10", mode, 5, 0.06, 2});
   }
@@ -125,18 +153,6 @@ TEST(Characters, GarmentsStartValidAndClear) {
 // with nothing crossing and no frame far slower than the run's median (the test's mesh is coarser
 // than the scenes': 2 cm at the finest).
 class CaptureShot : public testing::TestWithParam<std::string> {};
-
-// The garments' meshes of a run's one part, as a run resumed from them takes them.
-ResumePoint meshes_now(const Ensemble& run) {
-  const Simulation& part = *run.parts().front();
-  ResumePoint point;
-  point.frame = run.frame();
-  for (std::size_t g = 0; g < part.scene().garments.size(); ++g) {
-    point.names.push_back(part.scene().garments[g].name);
-    point.garments.push_back(part.garment_mesh(g));
-  }
-  return point;
-}
 
 // The frames from where `run` is to frame 40: none ends with a crossing or a collision
 // fallback, and none takes 20 times the median frame. `before_frame` sees the run before each.
