@@ -94,30 +94,38 @@ void BlockDiagonalSolver::copy_values(const SparseMatrix& a, Block& block) {
 SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (blocks_.size() == 1 && blocks_.front().solver) return blocks_.front().solver->solve(a, b, x);
   // One active level: CHOLMOD's and BLAS's own teams inside each unit run on the unit's thread
-  // (as in cholmod_use.hpp's cholmod_serial).
+  // (as in cholmod_use.hpp's cholmod_serial). On one thread no region is opened: inside even a
+  // one-thread region, cholmod_serial's team would be a nested one, whose threads libgomp
+  // starts and ends at every call (about 70 thread starts a karate frame).
   omp_set_max_active_levels(1);
-  const auto n = static_cast<int>(units_.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
-  for (int u = 0; u < n; ++u) {
+  auto factor_or_solve = [&](int u) {
     const auto [k, half] = units_[static_cast<std::size_t>(u)];
     Block& block = blocks_[static_cast<std::size_t>(k)];
     if (half >= 0) {
       block.half_factored[static_cast<std::size_t>(half)] = block.separated->factor_half(a, half);
-      continue;
+      return;
     }
     copy_values(a, block);
     block.b = b.segment(block.start, block.size);
     block.x = x.segment(block.start, block.size);
     block.report = block.solver->solve(block.a, block.b, block.x);
-  }
+  };
   // The separated blocks' joins: each separator's Schur complement and the substitutions.
-  const auto m = static_cast<int>(blocks_.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
-  for (int k = 0; k < m; ++k) {
+  auto join = [&](int k) {
     Block& block = blocks_[static_cast<std::size_t>(k)];
-    if (!block.separated) continue;
+    if (!block.separated) return;
     block.b = b.segment(block.start, block.size);
     block.report = block.half_factored[0] && block.half_factored[1] ? block.separated->solve(a, block.b, block.x) : SolveReport{};
+  };
+  const auto n = static_cast<int>(units_.size()), m = static_cast<int>(blocks_.size());
+  if (params_.threads > 1) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
+    for (int u = 0; u < n; ++u) factor_or_solve(u);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
+    for (int k = 0; k < m; ++k) join(k);
+  } else {
+    for (int u = 0; u < n; ++u) factor_or_solve(u);
+    for (int k = 0; k < m; ++k) join(k);
   }
   SolveReport r;
   r.ok = true;
