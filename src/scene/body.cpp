@@ -58,9 +58,9 @@ struct BodyPlan {
   std::vector<int> bone_to;  // per joint: where the bone from its parent ends; -1 for none
 };
 
-BodyPlan body_plan(const Skeleton& skeleton) {
+// (`figure`: recognise_humanoid(skeleton).)
+BodyPlan body_plan(const Skeleton& skeleton, const HumanoidRecognition& figure) {
   const std::size_t n = skeleton.joints.size();
-  HumanoidRecognition figure = recognise_humanoid(skeleton);
   BodyPlan plan{std::vector<BodyPart>(n, BodyPart::Other), std::vector<int>(n), std::vector<int>(n)};
   for (std::size_t j = 0; j < n; ++j) plan.order[j] = plan.bone_to[j] = static_cast<int>(j);
   if (!figure.humanoid) return plan;
@@ -116,7 +116,7 @@ double build_clearing_arms(const Motion& motion, const std::vector<Pose>& poses,
   const Skeleton& skeleton = motion.skeleton;
   const HumanoidRecognition figure = recognise_humanoid(skeleton);
   if (!figure.humanoid) return 1.0;
-  const BodyPlan plan = body_plan(skeleton);
+  const BodyPlan plan = body_plan(skeleton, figure);
   std::vector<int> arms, shoulders_and_head;
   for (const Limb& arm : figure.humanoid->arms) {
     arms.push_back(arm.root);
@@ -162,7 +162,7 @@ Body::Body(const Motion& motion, const BodyParams& params, MeshSource skin) : Bo
 Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin, BodyMeshCache* cache) : motion_(motion) {
   const auto& joints = motion.skeleton.joints;
   const std::vector<Eigen::Isometry3d> rest = motion.world(rest_pose(motion.skeleton));
-  const std::vector<Bone> bones = bones_in(motion.skeleton, body_plan(motion.skeleton), rest, params.build);
+  const std::vector<Bone> bones = bones_in(motion.skeleton, body_plan(motion.skeleton, recognise_humanoid(motion.skeleton)), rest, params.build);
   Aabb box;
   for (const Bone& b : bones)
     for (const Vec3& p : {b.a, b.b}) box.grow(p);

@@ -16,13 +16,16 @@ namespace {
 struct Shape {
   const Skeleton& skeleton;
   std::vector<Vec3> at;                  // rest positions
+  std::vector<std::vector<int>> children;  // per joint: its children, end sites included
   std::vector<std::vector<int>> limbs;   // per joint: its children that are joints, not end sites
   std::vector<double> extent;            // per joint: the farthest any joint below it is from it
 
-  explicit Shape(const Skeleton& s) : skeleton(s), at(s.joints.size()), limbs(s.joints.size()), extent(s.joints.size(), 0.0) {
+  explicit Shape(const Skeleton& s)
+      : skeleton(s), at(s.joints.size()), children(s.joints.size()), limbs(s.joints.size()), extent(s.joints.size(), 0.0) {
     for (std::size_t j = 0; j < s.joints.size(); ++j) {
       const int parent = s.joints[j].parent;
       at[j] = parent < 0 ? s.joints[j].offset : at[static_cast<std::size_t>(parent)] + s.joints[j].offset;
+      if (parent >= 0) children[static_cast<std::size_t>(parent)].push_back(static_cast<int>(j));
       if (parent >= 0 && !s.joints[j].end_site) limbs[static_cast<std::size_t>(parent)].push_back(static_cast<int>(j));
     }
     // Every joint's distance to each of its ancestors: O(joints x depth), the depth bounded by the reader.
@@ -344,15 +347,12 @@ std::vector<int> figure_order(const Skeleton& skeleton, const Humanoid& humanoid
   const std::vector<char> left = joints_below(skeleton, {first(humanoid.arms[0]), first(humanoid.legs[0])});
   const std::vector<char> right = joints_below(skeleton, {first(humanoid.arms[1]), first(humanoid.legs[1])});
   auto side = [&](int j) { return left[static_cast<std::size_t>(j)] ? 1 : right[static_cast<std::size_t>(j)] ? 2 : 0; };
-  std::vector<std::vector<int>> children(skeleton.joints.size());
-  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
-    if (skeleton.joints[j].parent >= 0) children[static_cast<std::size_t>(skeleton.joints[j].parent)].push_back(static_cast<int>(j));
   std::vector<int> order, stack{0};
   while (!stack.empty()) {
     const int j = stack.back();
     stack.pop_back();
     order.push_back(j);
-    std::vector<int> next = children[static_cast<std::size_t>(j)];
+    std::vector<int> next = shape.children[static_cast<std::size_t>(j)];
     std::stable_sort(next.begin(), next.end(), [&](int a, int b) {
       if (side(a) != side(b)) return side(a) < side(b);
       return shape.reach_from_parent(a) > shape.reach_from_parent(b);
@@ -364,13 +364,10 @@ std::vector<int> figure_order(const Skeleton& skeleton, const Humanoid& humanoid
 
 std::vector<int> mirror_partners(const Skeleton& skeleton, const Humanoid& humanoid) {
   const Shape shape(skeleton);
-  std::vector<std::vector<int>> children(skeleton.joints.size());
-  for (std::size_t j = 0; j < skeleton.joints.size(); ++j)
-    if (skeleton.joints[j].parent >= 0) children[static_cast<std::size_t>(skeleton.joints[j].parent)].push_back(static_cast<int>(j));
   // Children in an order a mirror image keeps: farther reaching first, then by their offset's
   // height, depth and distance from the middle.
   auto ordered = [&](int j) {
-    std::vector<int> out = children[static_cast<std::size_t>(j)];
+    std::vector<int> out = shape.children[static_cast<std::size_t>(j)];
     auto key = [&](int c) {
       const Vec3& o = skeleton.joints[static_cast<std::size_t>(c)].offset;
       return std::tuple(-shape.reach_from_parent(c), o.y(), o.z(), std::abs(o.x()));
