@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include "physics/cholmod_use.hpp"
+#include "physics/supernodal_cholesky.hpp"
 
 namespace vdc {
 
@@ -21,12 +22,30 @@ namespace {
 // fewer flops than CHOLMOD's default AMD choice and about 20% faster factorizations,
 // bench/RESULTS.md), at a fraction of the cost of ordering the scalar graph: adaptive runs
 // analyze a new pattern every frame.
+// The numeric factorization is SupernodalCholesky's: CHOLMOD's bits without its OpenMP regions.
 class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+  using Base = Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>;
+
  public:
   void analyzePattern(const SparseMatrix& a) {
+    order(a);
+    if (m_cholmodFactor) numeric_.prepare(a, *m_cholmodFactor, cholmod());
+  }
+  void factorize(const SparseMatrix& a) {
+    if (!m_cholmodFactor || !numeric_.prepared_for(*m_cholmodFactor)) {
+      Base::factorize(a);
+      return;
+    }
+    numeric_.factorize(a, *m_cholmodFactor);
+    m_info = m_cholmodFactor->minor == m_cholmodFactor->n ? Eigen::Success : Eigen::NumericalIssue;
+    m_factorizationIsOk = true;
+  }
+
+ private:
+  void order(const SparseMatrix& a) {
     const auto n = static_cast<std::size_t>(a.rows() / 3);
     if (a.rows() != 3 * static_cast<int64_t>(n) || n == 0) {
-      Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>::analyzePattern(a);
+      Base::analyzePattern(a);
       return;
     }
     std::vector<int> col_start, rows;
@@ -34,7 +53,7 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
     std::vector<int> node_perm(n), perm(3 * n);
     const bool ordered = metis_node_order(col_start, rows, node_perm, cholmod());
     if (!ordered) {
-      Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>::analyzePattern(a);
+      Base::analyzePattern(a);
       return;
     }
     for (std::size_t k = 0; k < n; ++k)
@@ -54,6 +73,7 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
     m_factorizationIsOk = false;
   }
 
+  SupernodalCholesky numeric_;
 };
 
 double relative_residual(const SparseMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {

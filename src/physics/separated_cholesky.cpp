@@ -7,12 +7,14 @@
 #include <cmath>
 
 #include "physics/cholmod_use.hpp"
+#include "physics/supernodal_cholesky.hpp"
 
 namespace vdc {
 
 struct SeparatedCholesky::Half {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
+  SupernodalCholesky numeric;          // factors it (CHOLMOD's bits without its OpenMP regions)
   SparseMatrix m;                      // M_h, lower triangle: interior unknowns, then the separator's
   std::vector<Eigen::Index> source;    // per value of m: its index in a's values
   std::vector<Eigen::Index> unknown;   // per unknown of m: the range's unknown
@@ -103,6 +105,7 @@ bool SeparatedCholesky::Half::analyze(const SparseMatrix& a, Eigen::Index start,
   const int* perm = static_cast<const int*>(factor->Perm);
   for (Eigen::Index i = 0; i < size; ++i)
     if (perm[i] != i) return false;
+  numeric.prepare(m, *factor, common);
   return true;
 }
 
@@ -158,8 +161,13 @@ bool SeparatedCholesky::factor_half(const SparseMatrix& a, int h) {
   for (std::size_t i = 0; i < half.source.size(); ++i) half.m.valuePtr()[i] = a.valuePtr()[half.source[i]];
   cholmod_sparse view = half.view();
   int factored = 0;
-  cholmod_serial([&] { factored = cholmod_factorize(&view, half.factor, &half.common); });
-  if (!factored || half.common.status != CHOLMOD_OK || half.factor->minor != half.factor->n) return false;
+  if (half.numeric.prepared_for(*half.factor)) {
+    cholmod_serial([&] { factored = half.numeric.factorize(half.m, *half.factor); });
+  } else {
+    cholmod_serial([&] { factored = cholmod_factorize(&view, half.factor, &half.common); });
+    factored = factored && half.common.status == CHOLMOD_OK;
+  }
+  if (!factored || half.factor->minor != half.factor->n) return false;
   // L_hS from the supernodes holding the separator's columns (the last ones).
   const auto s = static_cast<Eigen::Index>(separator_.size());
   half.separator_factor.setZero(s, s);
