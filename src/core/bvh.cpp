@@ -1,4 +1,5 @@
-// Axis-aligned bounding-box hierarchy (median split on the longest axis of the centres).
+// Axis-aligned bounding-box hierarchy (median split on the longest axis of the centres, down to
+// leaves of at most kLeafSize primitives).
 #include "core/bvh.hpp"
 
 #include <algorithm>
@@ -12,14 +13,19 @@ Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
     prims[i] = static_cast<int32_t>(i);
     centres[i] = 0.5 * (leaf_boxes[i].lo + leaf_boxes[i].hi);
   }
-  nodes_.reserve(2 * leaf_boxes.size() + 1);
+  nodes_.reserve(leaf_boxes.size() / 2 + 2);
   if (leaf_boxes.empty()) {
     nodes_.push_back(Node{});
     return;
   }
   build(prims, 0, prims.size(), centres);
-  rank_.resize(prims.size());
-  for (std::size_t i = 0; i < prims.size(); ++i) rank_[static_cast<std::size_t>(prims[i])] = static_cast<int32_t>(i);
+  order_ = std::move(prims);
+  rank_.resize(order_.size());
+  ranked_box_.resize(order_.size());
+  for (std::size_t r = 0; r < order_.size(); ++r) {
+    rank_[static_cast<std::size_t>(order_[r])] = static_cast<int32_t>(r);
+    ranked_box_[r] = leaf_box_[static_cast<std::size_t>(order_[r])];
+  }
   measure_looseness();
 }
 
@@ -28,9 +34,11 @@ int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t e
   nodes_.push_back(Node{});
   nodes_[static_cast<std::size_t>(index)].first = static_cast<int32_t>(begin);
   nodes_[static_cast<std::size_t>(index)].last = static_cast<int32_t>(end) - 1;
-  if (end - begin == 1) {
-    nodes_[static_cast<std::size_t>(index)].prim = prims[begin];
-    nodes_[static_cast<std::size_t>(index)].box = leaf_box_[static_cast<std::size_t>(prims[begin])];
+  if (end - begin <= static_cast<std::size_t>(kLeafSize)) {
+    Aabb box;
+    for (std::size_t i = begin; i < end; ++i) box.grow(leaf_box_[static_cast<std::size_t>(prims[i])]);
+    nodes_[static_cast<std::size_t>(index)].box = box;
+    ++leaves_;
     return index;
   }
   Aabb c;
@@ -63,27 +71,33 @@ double half_area(const Aabb& b) {
 void Bvh::refit(std::vector<Aabb> leaf_boxes) {
   leaf_box_ = std::move(leaf_boxes);
   if (leaf_box_.empty()) return;
+  double primitives = 0;
+  for (std::size_t r = 0; r < order_.size(); ++r) {
+    ranked_box_[r] = leaf_box_[static_cast<std::size_t>(order_[r])];
+    primitives += half_area(ranked_box_[r]);
+  }
   // Children come after their parent (the build numbers nodes depth first), so one backward
   // pass refits bottom-up, and measures the looseness on the way.
-  double inner = 0, leaves = 0;
+  double nodes = 0;
   for (auto i = static_cast<int64_t>(nodes_.size()) - 1; i >= 0; --i) {
     Node& n = nodes_[static_cast<std::size_t>(i)];
     if (n.left < 0) {
-      n.box = leaf_box_[static_cast<std::size_t>(n.prim)];
-      leaves += half_area(n.box);
+      n.box = Aabb();
+      for (int32_t r = n.first; r <= n.last; ++r) n.box.grow(ranked_box_[static_cast<std::size_t>(r)]);
     } else {
       n.box = nodes_[static_cast<std::size_t>(n.left)].box;
       n.box.grow(nodes_[static_cast<std::size_t>(n.right)].box);
-      inner += half_area(n.box);
     }
+    nodes += half_area(n.box);
   }
-  looseness_ = leaves > 0 ? inner / leaves : inner;
+  looseness_ = primitives > 0 ? nodes / primitives : nodes;
 }
 
 void Bvh::measure_looseness() {
-  double inner = 0, leaves = 0;
-  for (const Node& n : nodes_) (n.left < 0 ? leaves : inner) += half_area(n.box);
-  looseness_ = leaves > 0 ? inner / leaves : inner;
+  double nodes = 0, primitives = 0;
+  for (const Node& n : nodes_) nodes += half_area(n.box);
+  for (const Aabb& b : ranked_box_) primitives += half_area(b);
+  looseness_ = primitives > 0 ? nodes / primitives : nodes;
 }
 
 std::vector<int32_t> Bvh::subtrees(int count) const {

@@ -1,6 +1,7 @@
-// Bounding-volume hierarchy of axis-aligned boxes over triangles: built by median splits, refit
-// in place when positions move (boxes may be swept: the union over a step), rebuilt when the
-// topology changes. Queries list overlapping leaf pairs within one tree or between two.
+// Bounding-volume hierarchy of axis-aligned boxes over triangles: built by median splits into
+// leaves of a few primitives, refit in place when positions move (boxes may be swept: the union
+// over a step), rebuilt when the topology changes. Queries list the primitives whose own boxes
+// overlap, within one tree or between two: which they are never depends on the tree's shape.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -63,7 +64,7 @@ class Bvh {
   }
 
   // Units of work for a parallel traversal: disjoint subtrees (node indices) that together hold
-  // every primitive, at least `count` of them when the tree has that many primitives. The
+  // every primitive, at least `count` of them when the tree has that many leaves. The
   // partition depends only on the tree and `count`, never on the thread count.
   std::vector<int32_t> subtrees(int count) const;
   // Calls f(i, j) for every primitive i under node `subtree` of this tree and j of `other` whose
@@ -82,7 +83,7 @@ class Bvh {
   // Calls f(i) for every primitive whose box overlaps `box`.
   template <class F>
   void query(const Aabb& box, F&& f) const {
-    traverse([&](const Node& n) { return n.box.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
+    traverse([&](const Aabb& b, int32_t) { return b.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
   }
   // As query, but only primitives after `prim` in the tree's leaf order: when every primitive
   // of a tree queries the tree, each overlapping pair is met once, from its earlier member, and
@@ -90,7 +91,7 @@ class Bvh {
   template <class F>
   void query_later(const Aabb& box, int32_t prim, F&& f) const {
     const int32_t rank = rank_[static_cast<std::size_t>(prim)];
-    traverse([&](const Node& n) { return n.last > rank && n.box.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
+    traverse([&](const Aabb& b, int32_t last) { return last > rank && b.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
   }
 
   // Branch and bound for the nearest primitive to p: `dist(i)` returns primitive i's distance
@@ -99,21 +100,27 @@ class Bvh {
   // as near as the nearest is met, whatever the tree's shape, so a caller can break ties.
   template <class F>
   void nearest(const Vec3& p, double& best, F&& dist) const {
-    traverse([&](const Node& n) { return n.box.distance(p) <= best; }, [&](int32_t prim) { best = std::min(best, dist(prim)); },
+    traverse([&](const Aabb& b, int32_t) { return b.distance(p) <= best; }, [&](int32_t prim) { best = std::min(best, dist(prim)); },
              [&](const Aabb& l, const Aabb& r) { return l.distance(p) <= r.distance(p); });
   }
 
   int32_t size() const { return static_cast<int32_t>(leaf_box_.size()); }
+  int32_t leaves() const { return leaves_; }
+  // Primitives a leaf holds at most: a leaf pair's primitives are tested pair by pair in one
+  // loop, cheaper than the two levels of node pairs above them that one-primitive leaves cost.
+  static constexpr int32_t kLeafSize = 4;
   const Aabb& root_box() const { return nodes_.front().box; }
-  // How loose the tree is: the surface area of its inner nodes' boxes over that of its leaves'
-  // (the cost a query pays to reach a leaf, after the surface area heuristic). Refits of moving
+  // How loose the tree is: the surface area of its nodes' boxes over that of its primitives'
+  // (the cost a query pays to reach a primitive, after the surface area heuristic). Refits of moving
   // primitives raise it; a fresh build sets the baseline.
   double looseness() const { return looseness_; }
 
  private:
   // Depth first with a fixed stack (the median split keeps the depth at most ceil(log2 n) + 1,
-  // far below its 128 entries): descends into nodes that `enter` accepts, calls `leaf` on
-  // primitives, and visits the left child first when `left_first(left box, right box)`.
+  // far below its 128 entries): descends into nodes whose box and last leaf-order rank
+  // `enter(box, last)` accepts, tests each primitive of a leaf the same way with its own box and
+  // rank, calls `leaf` on those accepted, and visits the left child first when
+  // `left_first(left box, right box)`.
   template <class Enter, class Leaf, class LeftFirst>
   void traverse(Enter&& enter, Leaf&& leaf, LeftFirst&& left_first) const {
     if (leaf_box_.empty()) return;
@@ -122,9 +129,10 @@ class Bvh {
     stack[static_cast<std::size_t>(top++)] = 0;
     while (top > 0) {
       const Node& n = nodes_[static_cast<std::size_t>(stack[static_cast<std::size_t>(--top)])];
-      if (!enter(n)) continue;
+      if (!enter(n.box, n.last)) continue;
       if (n.left < 0) {
-        leaf(n.prim);
+        for (int32_t r = n.first; r <= n.last; ++r)
+          if (enter(ranked_box_[static_cast<std::size_t>(r)], r)) leaf(order_[static_cast<std::size_t>(r)]);
         continue;
       }
       const bool lf = left_first(nodes_[static_cast<std::size_t>(n.left)].box, nodes_[static_cast<std::size_t>(n.right)].box);
@@ -136,14 +144,15 @@ class Bvh {
   struct Node {
     Aabb box;
     int32_t left = -1, right = -1;  // children; -1 for a leaf
-    int32_t prim = -1;              // the primitive of a leaf
-    int32_t first = -1, last = -1;  // the first and last leaves under the node, in leaf order
+    int32_t first = -1, last = -1;  // the first and last primitives under the node, in leaf order
   };
   int32_t build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
   void measure_looseness();
   // Simultaneous descent from node a of this tree and the root of `other`: pairs whose boxes
   // overlap (this tree's grown by pad); with `later`, only pairs whose `other` primitive comes
-  // after this tree's in leaf order (other is then this tree). Splits the larger box first.
+  // after this tree's in leaf order (other is then this tree). Splits the larger box first; a
+  // pair of leaves tests its primitives' own boxes, so the pairs found are the same whatever the
+  // trees' shapes.
   template <class F>
   void descend(int32_t a, const Bvh& other, double pad, bool later, F&& f) const {
     if (leaf_box_.empty() || other.leaf_box_.empty()) return;
@@ -155,9 +164,14 @@ class Bvh {
       const Node& na = nodes_[static_cast<std::size_t>(ia)];
       const Node& nb = other.nodes_[static_cast<std::size_t>(ib)];
       if (later && nb.last <= na.first) continue;
-      if (!((na.box.lo.array() - pad <= nb.box.hi.array()).all() && (nb.box.lo.array() <= na.box.hi.array() + pad).all())) continue;
+      if (!padded_overlap(na.box, nb.box, pad)) continue;
       if (na.left < 0 && nb.left < 0) {
-        f(na.prim, nb.prim);
+        for (int32_t ra = na.first; ra <= na.last; ++ra) {
+          const Aabb& box = ranked_box_[static_cast<std::size_t>(ra)];
+          for (int32_t rb = later ? std::max(nb.first, ra + 1) : nb.first; rb <= nb.last; ++rb)
+            if (padded_overlap(box, other.ranked_box_[static_cast<std::size_t>(rb)], pad))
+              f(order_[static_cast<std::size_t>(ra)], other.order_[static_cast<std::size_t>(rb)]);
+        }
         continue;
       }
       const bool split_a = nb.left < 0 || (na.left >= 0 && (na.box.hi - na.box.lo).squaredNorm() >= (nb.box.hi - nb.box.lo).squaredNorm());
@@ -170,10 +184,18 @@ class Bvh {
       }
     }
   }
+  // Whether box a grown by pad overlaps box b.
+  [[gnu::always_inline]] static bool padded_overlap(const Aabb& a, const Aabb& b, double pad) {
+    return a.lo.x() - pad <= b.hi.x() && a.lo.y() - pad <= b.hi.y() && a.lo.z() - pad <= b.hi.z() && b.lo.x() <= a.hi.x() + pad &&
+           b.lo.y() <= a.hi.y() + pad && b.lo.z() <= a.hi.z() + pad;
+  }
 
   std::vector<Node> nodes_;
-  std::vector<Aabb> leaf_box_;
-  std::vector<int32_t> rank_;  // by primitive: its place in leaf order (depth first, left first)
+  std::vector<Aabb> leaf_box_;    // by primitive
+  std::vector<Aabb> ranked_box_;  // the same boxes in leaf order, where leaf pairs read them
+  std::vector<int32_t> order_;    // by leaf order: the primitive (depth first, left first)
+  std::vector<int32_t> rank_;     // by primitive: its place in leaf order
+  int32_t leaves_ = 0;
   double looseness_ = 0;
 };
 

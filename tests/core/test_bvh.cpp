@@ -104,7 +104,7 @@ TEST(Bvh, DescentsFromSubtreesMeetEachPaddedPairOnce) {
   const Bvh all({everything});
   for (int count : {1, 7, 64, 2000}) {
     const std::vector<int32_t> units = ta.subtrees(count);
-    EXPECT_GE(static_cast<int>(units.size()), std::min(count, ta.size())) << count;
+    EXPECT_GE(static_cast<int>(units.size()), std::min(count, ta.leaves())) << count;
     std::vector<int> owner(a.size(), -1);
     std::set<std::pair<int, int>> self_found, cross_found;
     int self_meetings = 0;
@@ -150,9 +150,9 @@ TEST(Bvh, PairsBetweenTreesAndBoxQueriesMatchBruteForce) {
   EXPECT_EQ(hits, brute);
 }
 
-// Looseness is the inner boxes' surface area over the leaves': two unit cubes a unit apart make a
-// root of 3 x 1 x 1 (half area 7) over leaves of half area 3 each.
-TEST(Bvh, LoosenessIsInnerAreaOverLeafArea) {
+// Looseness is the nodes' surface area over the primitives': two unit cubes a unit apart make a
+// root of 3 x 1 x 1 (half area 7) over primitives of half area 3 each.
+TEST(Bvh, LoosenessIsNodeAreaOverPrimitiveArea) {
   Aabb a, b;
   a.grow(Vec3(0, 0, 0));
   a.grow(Vec3(1, 1, 1));
