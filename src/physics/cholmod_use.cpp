@@ -1,7 +1,5 @@
-// METIS orderings of node graphs and supernode amalgamation for CHOLMOD.
+// METIS orderings of node graphs for CHOLMOD.
 #include "physics/cholmod_use.hpp"
-
-#include <array>
 
 namespace vdc {
 
@@ -41,16 +39,6 @@ bool metis_node_order(std::vector<int>& col_start, std::vector<int>& rows, std::
   node_perm.assign(col_start.size() - 1, 0);
   const std::lock_guard<std::mutex> one_at_a_time(metis_lock());
   return cholmod_metis(&g, nullptr, 0, 1, node_perm.data(), &common) != 0;
-}
-
-void amalgamate_for(std::size_t nodes, cholmod_common& common) {
-  const bool small = nodes < 10000;
-  const std::array<std::size_t, 3> nrelax = small ? std::array<std::size_t, 3>{12, 48, 144} : std::array<std::size_t, 3>{4, 16, 48};
-  const std::array<double, 3> zrelax = small ? std::array<double, 3>{1.05, 0.25, 0.125} : std::array<double, 3>{0.8, 0.1, 0.05};
-  for (std::size_t k = 0; k < 3; ++k) {
-    common.nrelax[k] = nrelax[k];
-    common.zrelax[k] = zrelax[k];
-  }
 }
 
 }  // namespace vdc

@@ -1,6 +1,5 @@
 // How the solvers call CHOLMOD: its OpenMP loops and BLAS calls kept on the calling thread,
-// METIS's orderings one at a time, nodes (3x3 blocks) ordered rather than unknowns, and larger
-// supernodes for cloth-sized systems.
+// METIS's orderings one at a time, nodes (3x3 blocks) ordered rather than unknowns.
 #pragma once
 #include <cstddef>
 #include <mutex>
@@ -55,13 +54,5 @@ cholmod_sparse node_graph_view(std::vector<int>& col_start, std::vector<int>& ro
 // METIS nested dissection of a node graph (columns' rows in `col_start` / `rows`, both
 // triangles), under metis_lock: node_perm[k] is the k-th node eliminated. False if METIS fails.
 bool metis_node_order(std::vector<int>& col_start, std::vector<int>& rows, std::vector<int>& node_perm, cholmod_common& common);
-
-// Below 10,000 nodes (about 20,000 faces), supernodes amalgamated three times as far as
-// CHOLMOD's defaults (nrelax 4/16/48 columns, zrelax 0.8/0.1/0.05): fewer, larger supernodes.
-// CHOLMOD opens OpenMP regions for every supernode, each ending in a futex call that costs
-// microseconds in a virtual machine; on cloth systems of 300 to 18,000 faces the
-// factorization and solve take a sixth to a half less time despite the extra fill, while
-// at 33,000 faces the fill costs more than it saves (bench/RESULTS.md, "Larger supernodes").
-void amalgamate_for(std::size_t nodes, cholmod_common& common);
 
 }  // namespace vdc

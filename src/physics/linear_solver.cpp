@@ -64,7 +64,6 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
     }
     cholmod().nmethods = 1;
     cholmod().method[0].ordering = CHOLMOD_GIVEN;
-    amalgamate_for(n, cholmod());
     cholmod_sparse view = Eigen::viewAsCholmod(a.selfadjointView<Eigen::Lower>());
     m_cholmodFactor = cholmod_analyze_p(&view, perm.data(), nullptr, 0, &cholmod());
     m_isInitialized = true;

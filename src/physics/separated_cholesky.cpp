@@ -98,7 +98,6 @@ bool SeparatedCholesky::Half::analyze(const SparseMatrix& a, Eigen::Index start,
   common.method[0].ordering = CHOLMOD_NATURAL;
   common.postorder = 0;
   common.supernodal = CHOLMOD_SUPERNODAL;
-  amalgamate_for(static_cast<std::size_t>(size / 3), common);
   cholmod_sparse v = view();
   cholmod_serial([&] { factor = cholmod_analyze(&v, &common); });
   if (factor == nullptr || !factor->is_super) return false;
