@@ -1,7 +1,7 @@
 // The supernodal factorization done outside CHOLMOD: the same factor as cholmod_factorize, bit
 // for bit, on sheets and random sparse systems under three orderings and two amalgamations
-// (CHOLMOD's and a three times wider one); a matrix that is not positive definite refused at the column CHOLMOD names; a
-// matrix whose pattern the analysis does not cover left to CHOLMOD.
+// (CHOLMOD's and a three times wider one); a matrix that is not positive definite refused at
+// the column CHOLMOD names; a matrix whose pattern the analysis does not cover left to CHOLMOD.
 #include <gtest/gtest.h>
 
 #include <Eigen/CholmodSupport>
