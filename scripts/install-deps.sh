@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev          # dense and sparse linear algebra
   libsuitesparse-dev     # CHOLMOD sparse Cholesky
   libopenblas0-openmp    # fast BLAS for CHOLMOD's dense kernels
+  libblas-dev liblapack-dev  # linked directly by the supernodal factorization (OpenBLAS behind them)
   nlohmann-json3-dev     # scene and material files
   zlib1g-dev             # deflate for the PNG previews
   openmpi-bin libopenmpi-dev  # `mpirun -np N vdcloth run`: a run across processes and machines
