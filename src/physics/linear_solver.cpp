@@ -28,7 +28,7 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
 
  public:
   void analyzePattern(const SparseMatrix& a) {
-    order(a);
+    analyze_in_node_order(a);
     if (m_cholmodFactor) numeric_.prepare(a, *m_cholmodFactor, cholmod());
   }
   void factorize(const SparseMatrix& a) {
@@ -42,7 +42,7 @@ class BlockOrderedLLT : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::
   }
 
  private:
-  void order(const SparseMatrix& a) {
+  void analyze_in_node_order(const SparseMatrix& a) {
     const auto n = static_cast<std::size_t>(a.rows() / 3);
     if (a.rows() != 3 * static_cast<int64_t>(n) || n == 0) {
       Base::analyzePattern(a);

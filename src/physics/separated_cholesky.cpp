@@ -158,12 +158,12 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
 bool SeparatedCholesky::factor_half(const SparseMatrix& a, int h) {
   Half& half = *halves_[static_cast<std::size_t>(h)];
   for (std::size_t i = 0; i < half.source.size(); ++i) half.m.valuePtr()[i] = a.valuePtr()[half.source[i]];
-  cholmod_sparse view = half.view();
-  int factored = 0;
+  bool factored = false;
   if (half.numeric.prepared_for(*half.factor)) {
     cholmod_serial([&] { factored = half.numeric.factorize(half.m, *half.factor); });
   } else {
-    cholmod_serial([&] { factored = cholmod_factorize(&view, half.factor, &half.common); });
+    cholmod_sparse view = half.view();
+    cholmod_serial([&] { factored = cholmod_factorize(&view, half.factor, &half.common) != 0; });
     factored = factored && half.common.status == CHOLMOD_OK;
   }
   if (!factored || half.factor->minor != half.factor->n) return false;

@@ -39,6 +39,7 @@ bool SupernodalCholesky::prepare(const SparseMatrix& a, cholmod_factor& factor, 
   for (std::size_t k = 0; k < n; ++k) position[static_cast<std::size_t>(perm != nullptr ? perm[k] : static_cast<int>(k))] = static_cast<int>(k);
   const auto* outer = a.outerIndexPtr();
   const auto* inner = a.innerIndexPtr();
+  entries_.reserve(static_cast<std::size_t>(a.nonZeros()) / 2 + n);
   for (Eigen::Index j = 0; j < a.outerSize(); ++j) {
     const auto end = a.isCompressed() ? outer[j + 1] : outer[j] + a.innerNonZeroPtr()[j];
     for (auto k = outer[j]; k < end; ++k) {
@@ -87,13 +88,13 @@ bool SupernodalCholesky::factorize(const SparseMatrix& a, cholmod_factor& factor
     // subtracted from s's columns; then d waits for the supernode of its next row.
     for (int d = head_[static_cast<std::size_t>(s)], after = -1; d != -1; d = after) {
       const auto du = static_cast<std::size_t>(d);
-      int ndcol = super[d + 1] - super[d];
+      const int ndcol = super[d + 1] - super[d];
       const int pdi = pi[d], pdend = pi[d + 1];
-      int ndrow = pdend - pdi;
+      const int ndrow = pdend - pdi;
       const int pdi1 = pdi + lpos_[du], pdx1 = px[d] + lpos_[du];
       int pdi2 = pdi1;
       while (pdi2 < pdend && ls[pdi2] < k2) ++pdi2;
-      int ndrow1 = pdi2 - pdi1, ndrow2 = pdend - pdi1, ndrow3 = ndrow2 - ndrow1;
+      const int ndrow1 = pdi2 - pdi1, ndrow2 = pdend - pdi1, ndrow3 = ndrow2 - ndrow1;
       if (update_.size() < static_cast<std::size_t>(ndrow1) * static_cast<std::size_t>(ndrow2))
         update_.resize(static_cast<std::size_t>(ndrow1) * static_cast<std::size_t>(ndrow2));
       double* c = update_.data();
@@ -113,15 +114,15 @@ bool SupernodalCholesky::factorize(const SparseMatrix& a, cholmod_factor& factor
         head_[ancestor] = d;
       }
     }
-    int info = 0, ld = nsrow, cols = nscol;
-    dpotrf_("L", &cols, lx + psx, &ld, &info);
+    int info = 0;
+    dpotrf_("L", &nscol, lx + psx, &nsrow, &info);
     if (info != 0) {
       factor.minor = static_cast<std::size_t>(k1 + info - 1);
       return false;
     }
-    int below = nsrow - nscol;
+    const int below = nsrow - nscol;
     if (below > 0) {
-      dtrsm_("R", "L", "C", "N", &below, &cols, &one, lx + psx, &ld, lx + psx + nscol, &ld);
+      dtrsm_("R", "L", "C", "N", &below, &nscol, &one, lx + psx, &nsrow, lx + psx + nscol, &nsrow);
       const auto parent = static_cast<std::size_t>(supernode_of_[static_cast<std::size_t>(ls[psi + nscol])]);
       lpos_[static_cast<std::size_t>(s)] = nscol;
       next_[static_cast<std::size_t>(s)] = head_[parent];
