@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "app/camera_choice.hpp"
 #include "app/cli.hpp"
 #include "app/run_frames.hpp"
 #include "core/error.hpp"
@@ -29,7 +30,7 @@ namespace {
 
 const char* kFidelityHelp =
     "usage: vdcloth fidelity SCENE.json RUN_DIR REFERENCE_DIR [--floor PERTURBED_REFERENCE_DIR ...]\n"
-    "                        [--sample PERTURBED_RUN_DIR ...] [--every N] [--scale S] [--out DIR]\n"
+    "                        [--sample PERTURBED_RUN_DIR ...] [--every N] [--scale S] [--camera NAME] [--out DIR]\n"
     "                        [--overlap-margin X] [--min-margin X] [--detail X] [--popping X]\n"
     "\n"
     "Measures how like REFERENCE_DIR (an adaptive run, say) RUN_DIR (a view run of the same scene)\n"
@@ -61,6 +62,8 @@ const char* kFidelityHelp =
     "  popping ratio <= X                        (--popping, default 1.2: run's mean over reference's)\n"
     "The overlap is judged only with --floor; with it the verdicts also give the floor run's own\n"
     "detail and popping ratios (what a tiny perturbation already does to them), not judged.\n"
+    "--camera NAME looks through that camera of the scene (a scene with a \"cameras\" list, or a\n"
+    "stereo camera's eyes: NAME_left, NAME_right; default: its first), into RUN_DIR/fidelity_NAME.\n"
     "Exit status: 0 every verdict passes, 3 one fails,\n"
     "2 bad usage or input (nothing written).\n"
     "\n"
@@ -78,7 +81,7 @@ const char* kFidelityHelp =
     "  --popping X           0 to 100 (default: 1.2)\n";
 
 struct FidelityArgs {
-  std::string scene, run, reference, out;
+  std::string scene, run, reference, out, camera;
   std::vector<std::string> floors, samples;
   int every = 1;
   double scale = 0.5;
@@ -96,6 +99,8 @@ FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
       if (a == "--floor") f.floors.push_back(dir);
       else if (a == "--sample") f.samples.push_back(dir);
       else f.out = dir;
+    } else if (a == "--camera") {
+      f.camera = in.value();
     } else if (a == "--every") {
       f.every = parse_positive_int(a, in.value());
     } else if (a == "--scale") {
@@ -118,7 +123,7 @@ FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
   f.scene = positional[0];
   f.run = positional[1];
   f.reference = positional[2];
-  if (f.out.empty()) f.out = f.run + "/fidelity";
+  if (f.out.empty()) f.out = f.run + "/fidelity" + (f.camera.empty() ? "" : "_" + f.camera);
   return f;
 }
 
@@ -126,7 +131,7 @@ FidelityArgs parse_fidelity_args(const std::vector<std::string>& args) {
 using DrawnRuns = std::vector<DrawnFrame>;
 
 DrawnRuns draw_runs(const Scene& scene, const std::vector<std::map<int, FrameFiles>>& runs, int frame, double scale) {
-  const Camera camera = scene.camera->at(frame * scene.frame_time);
+  const Camera camera = scene.cameras.front().path.at(frame * scene.frame_time);
   DrawnRuns drawn;
   for (const auto& run : runs) drawn.push_back(draw_frame(camera, run.at(frame), scale));
   return drawn;
@@ -134,7 +139,7 @@ DrawnRuns draw_runs(const Scene& scene, const std::vector<std::map<int, FrameFil
 
 // The shot of a frame: the number of cuts at times up to the frame's.
 int shot_of(const Scene& scene, int frame) {
-  return static_cast<int>(scene.camera->cuts_in(-std::numeric_limits<double>::infinity(), frame * scene.frame_time).size());
+  return static_cast<int>(scene.cameras.front().path.cuts_in(-std::numeric_limits<double>::infinity(), frame * scene.frame_time).size());
 }
 
 // Drawn run k's overlap with the reference (drawn run 1), its wrinkle detail, and its popping
@@ -380,8 +385,8 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
       return kExitOk;
     }
   const FidelityArgs f = parse_fidelity_args(args);
-  const Scene scene = load_scene(f.scene);
-  if (!scene.camera) throw InputError(f.scene, "camera", "the scene has no camera to measure through");
+  Scene scene = load_scene(f.scene);
+  choose_camera(scene, f.camera, "to measure through");
   std::vector<std::string> dirs{f.run, f.reference};
   dirs.insert(dirs.end(), f.floors.begin(), f.floors.end());
   dirs.insert(dirs.end(), f.samples.begin(), f.samples.end());
@@ -394,7 +399,7 @@ int fidelity_command(const std::vector<std::string>& args, std::ostream& out) {
     throw InputError(f.run, "", "no frame in common with " + joined(std::vector<std::string>(dirs.begin() + 1, dirs.end()), " and "));
   std::vector<int> measured;
   for (std::size_t i = 0; i < common.size(); i += static_cast<std::size_t>(f.every)) measured.push_back(common[i]);
-  const double pixels_per_metre = scene.camera->lens().focal_pixels() * f.scale;
+  const double pixels_per_metre = scene.cameras.front().path.lens().focal_pixels() * f.scale;
 
   // Everything given is valid: from here on only a mesh file that cannot be read (or results
   // that cannot be written) stops the command, and then it takes back what it wrote.

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "app/camera_choice.hpp"
 #include "app/cli.hpp"
 #include "app/run_frames.hpp"
 #include "app/video_writer.hpp"
@@ -27,7 +28,7 @@ namespace {
 
 const char* kRenderHelp =
     "usage: vdcloth render SCENE.json RUN_DIR [--compare OTHER_RUN_DIR] [--colour garment|view] [--wireframe]\n"
-    "                      [--video] [--every N] [--scale S] [--out DIR]\n"
+    "                      [--video] [--every N] [--scale S] [--camera NAME] [--out DIR]\n"
     "\n"
     "Draws the meshes of RUN_DIR/frames/ (written by `vdcloth run`) through the scene's camera at\n"
     "each frame's time: OUT/frame_NNNN.png. With --compare, the frames both runs have are drawn\n"
@@ -46,10 +47,13 @@ const char* kRenderHelp =
     "                  H.264 video at the shot's speed, made by ffmpeg (Debian package ffmpeg)\n"
     "  --every N       every Nth frame that has meshes (default: 1, all)\n"
     "  --scale S       image size relative to the camera's, 0.05 to 4 (default: 0.5)\n"
-    "  --out DIR       output directory (default: RUN_DIR/render, or RUN_DIR/compare with --compare)\n";
+    "  --camera NAME   the scene's camera to look through (a scene with a \"cameras\" list, or a\n"
+    "                  stereo camera's eyes: NAME_left, NAME_right); default: its first\n"
+    "  --out DIR       output directory (default: RUN_DIR/render, or RUN_DIR/compare with --compare;\n"
+    "                  with --camera, RUN_DIR/render_NAME or RUN_DIR/compare_NAME)\n";
 
 struct RenderArgs {
-  std::string scene, run, compare, out;
+  std::string scene, run, compare, out, camera;
   int every = 1;
   double scale = 0.5;
   DrawStyle style;
@@ -64,6 +68,7 @@ RenderArgs parse_render_args(const std::vector<std::string>& args) {
     if (a == "--compare") r.compare = in.value();
     else if (a == "--every") r.every = parse_positive_int(a, in.value());
     else if (a == "--out") r.out = in.value();
+    else if (a == "--camera") r.camera = in.value();
     else if (a == "--scale") r.scale = parse_number(a, in.value(), 0.05, 4);
     else if (a == "--wireframe") r.style.wireframe = true;
     else if (a == "--video") r.video = true;
@@ -78,7 +83,7 @@ RenderArgs parse_render_args(const std::vector<std::string>& args) {
   if (positional.size() != 2) throw UsageError("render expects SCENE.json and RUN_DIR (try vdcloth render --help)");
   r.scene = positional[0];
   r.run = positional[1];
-  if (r.out.empty()) r.out = r.run + (r.compare.empty() ? "/render" : "/compare");
+  if (r.out.empty()) r.out = r.run + (r.compare.empty() ? "/render" : "/compare") + (r.camera.empty() ? "" : "_" + r.camera);
   return r;
 }
 
@@ -113,7 +118,7 @@ void draw_frames(const RenderArgs& r, const Scene& scene, const std::map<int, Fr
   double iou_sum = 0, iou_min = 1, diff_sum = 0;
   for (const int frame : chosen) {
     const double time = frame * scene.frame_time;
-    const Camera camera = scene.camera->at(time);
+    const Camera camera = scene.cameras.front().path.at(time);
     const DrawnFrame a = draw_frame(camera, frames.at(frame), r.scale, r.style);
     std::string written;
     if (r.compare.empty()) {
@@ -160,8 +165,8 @@ int render_command(const std::vector<std::string>& args, std::ostream& out) {
     }
   const RenderArgs r = parse_render_args(args);
   if (r.video && !ffmpeg_available()) throw UsageError("--video needs ffmpeg (Debian package ffmpeg), which cannot be started");
-  const Scene scene = load_scene(r.scene);
-  if (!scene.camera) throw InputError(r.scene, "camera", "the scene has no camera to render through");
+  Scene scene = load_scene(r.scene);
+  choose_camera(scene, r.camera, "to render through");
   const std::map<int, FrameFiles> frames = read_frame_files(r.run);
   std::map<int, FrameFiles> other;
   std::vector<int> to_draw;

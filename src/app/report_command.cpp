@@ -23,7 +23,7 @@ using nlohmann::json;
 namespace {
 
 const char* kReportHelp =
-    "usage: vdcloth report RUN_DIR [--compare OTHER_RUN_DIR] [--every N] [--out DIR]\n"
+    "usage: vdcloth report RUN_DIR [--compare OTHER_RUN_DIR] [--every N] [--camera NAME] [--out DIR]\n"
     "\n"
     "Writes a folder to open in a browser, from disk, with no server and no network: OUT/index.html\n"
     "shows the run (beside OTHER_RUN_DIR's with --compare):\n"
@@ -42,12 +42,25 @@ const char* kReportHelp =
     "  --every N       every Nth frame that has meshes goes into the viewer (default: all of them,\n"
     "                  or every Nth so that the report stays near 250 MB: a frame takes about a\n"
     "                  third of its OBJ and PLY files' size)\n"
+    "  --camera NAME   the camera the 3D view starts with, of a run with several (camera_NAME.json);\n"
+    "                  the page switches between them (default: the scene's first)\n"
     "  --out DIR       output directory (default: RUN_DIR/report), replaced if it holds a report\n";
 
 struct ReportArgs {
-  std::string run, compare, out;
+  std::string run, compare, out, camera;
   int every = 0;  // 0: chosen from the frames' size
 };
+
+// The index of the camera named `name` among a run's cameras; UsageError listing them if none is.
+int camera_index(const json& cameras, const std::string& name, const std::string& run_dir) {
+  std::string names;
+  for (std::size_t k = 0; k < cameras.size(); ++k) {
+    const std::string own = cameras[k].value("name", std::string());
+    if (own == name) return static_cast<int>(k);
+    names += (names.empty() ? "" : ", ") + (own.empty() ? std::string("(unnamed)") : own);
+  }
+  throw UsageError("--camera " + name + ": " + run_dir + " has no camera of that name" + (names.empty() ? " (it has none)" : " (its cameras: " + names + ")"));
+}
 
 ReportArgs parse_report_args(const std::vector<std::string>& args) {
   ReportArgs r;
@@ -57,6 +70,7 @@ ReportArgs parse_report_args(const std::vector<std::string>& args) {
     if (a == "--compare") r.compare = in.value();
     else if (a == "--every") r.every = parse_positive_int(a, in.value());
     else if (a == "--out") r.out = in.value();
+    else if (a == "--camera") r.camera = in.value();
     else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "' for report (try vdcloth report --help)");
     else positional.push_back(a);
   }
@@ -190,6 +204,7 @@ int report_command(const std::vector<std::string>& args, std::ostream& out, cons
     frames.push_back(frames_of(dir));
   }
   for (const auto& f : frames) frame_sets.push_back(&f);
+  if (!r.camera.empty()) records.front()["initial_camera"] = camera_index(records.front()["cameras"], r.camera, r.run);
   const std::vector<int> common = frames_in_common(frame_sets);
   int every = r.every;
   if (every == 0) {

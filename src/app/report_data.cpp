@@ -162,6 +162,26 @@ std::string base64(const std::string& bytes) {
   return text;
 }
 
+// The run's cameras: camera.json (its scene's one camera), or each camera_NAME.json of a scene
+// with several, in the scene's order (their "index").
+json read_cameras(const std::string& run_dir) {
+  json cameras = json::array();
+  if (is_file(run_dir + "/camera.json")) {
+    cameras.push_back(JsonValue::load_file(run_dir + "/camera.json").raw());
+    return cameras;
+  }
+  std::vector<std::string> named;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(run_dir, ec)) {
+    const std::string file = e.path().filename().string();
+    if (file.rfind("camera_", 0) == 0 && e.path().extension() == ".json") named.push_back(e.path().string());
+  }
+  std::sort(named.begin(), named.end());
+  for (const std::string& path : named) cameras.push_back(JsonValue::load_file(path).raw());
+  std::stable_sort(cameras.begin(), cameras.end(), [](const json& a, const json& b) { return a.value("index", 0) < b.value("index", 0); });
+  return cameras;
+}
+
 json read_run_record(const std::string& run_dir) {
   const std::string summary_path = run_dir + "/summary.json", stats_path = run_dir + "/stats.csv";
   if (!is_file(summary_path)) throw InputError(summary_path, "", "missing: not the directory of a vdcloth run");
@@ -171,8 +191,8 @@ json read_run_record(const std::string& run_dir) {
   record["summary"] = JsonValue::load_file(summary_path).raw();
   if (!record["summary"].is_object()) throw InputError(summary_path, "", "not a JSON object");
   record["stats"] = read_stats_columns(stats_path);
-  const std::string camera_path = run_dir + "/camera.json";
-  record["camera"] = is_file(camera_path) ? JsonValue::load_file(camera_path).raw() : json(nullptr);
+  record["cameras"] = read_cameras(run_dir);
+  record["camera"] = record["cameras"].empty() ? json(nullptr) : record["cameras"].front();
   record["check"] = read_check(run_dir);
   const std::string log_path = run_dir + "/" + kLogFile;
   record["log"] = is_file(log_path) ? json(lines_of(read_input_text(log_path, kMaxTableBytes, "text"))) : json(nullptr);

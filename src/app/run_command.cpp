@@ -115,8 +115,10 @@ class FrameLoop {
  private:
   void write_camera() {
     const Scene& scene = setup_.sim->group_scene(0);
-    if (cluster_.root() && scene.camera) write_camera_files(*scene.camera, scene.frame_time, setup_.frames, setup_.dir);
-    else if (cluster_.root()) remove_camera_files(setup_.dir);  // of an earlier run of another scene
+    if (!cluster_.root()) return;
+    remove_camera_files(setup_.dir);  // of an earlier run, of another scene perhaps
+    for (std::size_t c = 0; c < scene.cameras.size(); ++c)
+      write_camera_files(scene.cameras[c].path, scene.frame_time, setup_.frames, setup_.dir, scene.cameras[c].name, static_cast<int>(c));
   }
 
   // Before the shot, characters move from the pose their garments were made in into the shot's
@@ -181,10 +183,10 @@ class FrameLoop {
     out << "vdcloth: done, " << done_ - first_ << " frames in " << format_duration(seconds) << " (" << std::fixed << std::setprecision(3)
         << seconds / std::max(done_ - first_, 1) << " s/frame); results in " << dir << std::endl;
     out << "vdcloth: to see it in a browser: vdcloth report " << dir << " writes " << dir << "/report/index.html\n";
-    if (args_.mesh_every > 0 && setup_.sim->group_scene(0).camera)
+    if (args_.mesh_every > 0 && !setup_.sim->group_scene(0).cameras.empty())
       out << "vdcloth: to look at it: vdcloth render " << args_.scene << " " << dir << " draws it through the shot camera into " << dir
           << "/render/ (add --video for an MP4, --colour view --wireframe for the mesh); " << dir << "/frames/ holds the OBJ and PLY meshes, "
-          << dir << "/camera.chan the camera\n";
+          << camera_file(dir, setup_.sim->group_scene(0).cameras.front().name, ".chan") << " the camera\n";
     return kExitOk;
   }
 

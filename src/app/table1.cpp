@@ -330,7 +330,7 @@ int table1_command(const std::vector<std::string>& argv, std::ostream& out, std:
     const std::string path = args.scenes + "/" + name + ".json";
     if (std::error_code ec; !fs::is_regular_file(path, ec)) throw InputError(path, "", "scene not found (use --scenes DIR)");
     const Scene scene = load_scene(path);
-    if (!scene.camera) throw InputError(path, "camera", "table1 needs a camera for its view-dependent runs");
+    if (scene.cameras.empty()) throw InputError(path, "camera", "table1 needs a camera for its view-dependent runs");
     scene_frames[name] = scene.frames;
   }
   const int threads = args.threads > 0 ? args.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));

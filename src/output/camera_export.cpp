@@ -59,12 +59,18 @@ std::vector<CameraFrame> camera_frames(const CameraPath& path, double frame_time
   return out;
 }
 
-void write_camera_files(const CameraPath& path, double frame_time, int frames, const std::string& dir) {
+std::string camera_file(const std::string& dir, const std::string& name, const std::string& extension) {
+  return dir + (name.empty() ? "/camera" : "/camera_" + name) + extension;
+}
+
+void write_camera_files(const CameraPath& path, double frame_time, int frames, const std::string& dir, const std::string& name, int index) {
   const std::vector<CameraFrame> shot = camera_frames(path, frame_time, frames);
   const Camera& lens = path.lens();
   const double fov_x = 2 * std::atan(std::tan(0.5 * lens.fov_y_degrees / kDegrees) * lens.width / lens.height) * kDegrees;
 
   nlohmann::json j;
+  if (!name.empty()) j["name"] = name, j["index"] = index;  // the scene's order of its cameras
+  if (lens.eye_offset != 0) j["eye_offset"] = lens.eye_offset;  // a stereo eye: m along the camera's right
   j["units"] = "m";
   j["up_axis"] = "y";
   j["frame_time"] = frame_time;
@@ -99,12 +105,12 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
                            {"rotation_degrees", vec(c.rotation_degrees)}});
     if (depth_of_field) j["frames"].back()["focus_distance"] = c.camera.focus_distance;
   }
-  const std::string json_path = dir + "/camera.json";
+  const std::string json_path = camera_file(dir, name, ".json");
   std::ofstream json_file(json_path);
   json_file << j.dump(1) << "\n";
   if (!json_file.flush()) throw OutputError(json_path, "cannot write");
 
-  const std::string chan_path = dir + "/camera.chan";
+  const std::string chan_path = camera_file(dir, name, ".chan");
   TextFile chan(chan_path);
   for (const CameraFrame& c : shot) {
     chan.integer(c.frame);
@@ -117,8 +123,14 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
 
 void remove_camera_files(const std::string& dir) {
   std::error_code ec;
-  for (const char* name : {"/camera.json", "/camera.chan"})
-    if (std::filesystem::remove(dir + name, ec); ec) throw OutputError(dir + name, "cannot remove this file of an earlier run");
+  std::vector<std::string> files;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string file = e.path().filename().string(), extension = e.path().extension().string();
+    if ((file == "camera.json" || file == "camera.chan" || file.rfind("camera_", 0) == 0) && (extension == ".json" || extension == ".chan"))
+      files.push_back(e.path().string());
+  }
+  for (const std::string& file : files)
+    if (std::filesystem::remove(file, ec); ec) throw OutputError(file, "cannot remove this file of an earlier run");
 }
 
 }  // namespace vdc

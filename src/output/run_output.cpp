@@ -165,6 +165,7 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
       // View mode: each garment's faces with their view factors and what set them, beside the OBJ.
       std::vector<PlyFaceProperty> view{{"view", kViewFactorAttr}};
       if (mesh.face_attrs().has(kViewReasonAttr)) view.push_back({"reason", kViewReasonAttr, true});
+      if (mesh.face_attrs().has(kViewCameraAttr)) view.push_back({"camera", kViewCameraAttr, true});  // several cameras: which decided
       if (mesh.face_attrs().has(kViewFactorAttr) &&
           !write_ply_with_face_values(mesh, frame_file(dir_, "cloth", name, frame, ".ply"), view, kFrameDecimals))
         throw OutputError(frame_file(dir_, "cloth", name, frame, ".ply"), "cannot write");

@@ -78,7 +78,7 @@ void check_obstacle_groups(const Scene& s, const SceneEntries& entries) {
 Scene load_scene(const std::string& path) {
   JsonValue j = JsonValue::load_file(path);
   j.only_keys({"name", "frame_time", "frames", "substeps", "gravity", "air", "solver", "remeshing", "collision", "garments", "obstacles", "crowds", "camera",
-               "view"});
+               "cameras", "view"});
   Scene s;
   s.path = path;
   s.name = scene_name(j, path);
@@ -103,7 +103,7 @@ Scene load_scene(const std::string& path) {
   fit_worn_garments(entries.garments, s.garments, making, s.obstacles, s.start_time(), s.frames * s.frame_time, bodies);
   attach_handles(entries.garments, s.garments, s.obstacles, s.start_time());
   check_obstacle_groups(s, entries);
-  if (auto c = j.find("camera")) s.camera = parse_camera(*c);
+  s.cameras = parse_cameras(j);
   if (auto v = j.find("view")) s.view = parse_view(*v);
   return s;
 }
@@ -119,6 +119,19 @@ std::vector<std::string> garment_groups(const std::vector<GarmentSpec>& garments
 }
 
 }  // namespace
+
+const ShotCamera* Scene::find_camera(const std::string& camera) const {
+  if (camera.empty()) return cameras.empty() ? nullptr : &cameras.front();
+  for (const ShotCamera& c : cameras)
+    if (c.name == camera) return &c;
+  return nullptr;
+}
+
+std::vector<const CameraPath*> Scene::camera_paths() const {
+  std::vector<const CameraPath*> paths;
+  for (const ShotCamera& c : cameras) paths.push_back(&c.path);
+  return paths;
+}
 
 void apply_perturbation(Scene& scene, const Perturbation& p) {
   scene.gravity *= 1 + p.gravity;

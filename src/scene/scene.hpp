@@ -68,6 +68,13 @@ struct SolverSpec {
   int max_step_halvings = 8;
 };
 
+// A camera of the shot: the `camera` block (no name) or an entry of the `cameras` list (a stereo
+// camera is two: its eyes).
+struct ShotCamera {
+  std::string name;  // empty for the `camera` block
+  CameraPath path;
+};
+
 struct Scene {
   std::string path;  // the scene file
   std::string name;
@@ -86,13 +93,17 @@ struct Scene {
   // never touch this scene's garments but may hide them from the camera (view.occlusion). One
   // copy each, shared by the parts (a crowd of K would otherwise hold K - 1 copies a part).
   std::vector<std::shared_ptr<const ObstacleSpec>> hiding;
-  std::optional<CameraPath> camera;  // the `camera` block; --mode view needs it
+  std::vector<ShotCamera> cameras;  // the `camera` block or the `cameras` list; --mode view needs one
   ViewParams view;                   // the `view` block
   // Frames simulated before the shot's frame 0 (from time -preroll_frames * frame_time, never
   // written): the longest of the characters' pre-rolls, in whole frames. The garments' and
   // obstacles' meshes are placed at the start of it.
   int preroll_frames = 0;
   double start_time() const { return -preroll_frames * frame_time; }
+  // The camera named `camera`, the first camera for an empty name; nullptr if there is none.
+  const ShotCamera* find_camera(const std::string& camera = "") const;
+  // The cameras' paths, in order.
+  std::vector<const CameraPath*> camera_paths() const;
 };
 
 // Changes below any meaning a scene's author gives them (`vdcloth run --perturb` and

@@ -3,7 +3,7 @@
 // (`remeshing`), scene_collision.cpp (`collision`), scene_mesh.cpp (a garment's or obstacle's
 // `mesh`), scene_garments.cpp (`garments[i]` and `garments[i].handles[j]`), scene_fit.cpp (a
 // garment's `fit`), scene_obstacles.cpp (`obstacles[i]`), scene_character.cpp
-// (`obstacles[i].character`), scene_crowds.cpp (`crowds[i]`), scene_camera.cpp (`camera`),
+// (`obstacles[i].character`), scene_crowds.cpp (`crowds[i]`), scene_camera.cpp (`camera` and `cameras`),
 // scene_view.cpp (`view`). scene.cpp reads the top level and puts the blocks together.
 // Each throws InputError naming the file, the key path and the problem.
 #pragma once
@@ -63,7 +63,8 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
 std::shared_ptr<const Character> parse_character(const JsonValue& c, const std::optional<JsonValue>& transform,
                                                  const std::string& scene_path, double shot, BodyMeshCache& bodies);
 
-CameraPath parse_camera(const JsonValue& j);
+// The `camera` block or the `cameras` list of the top level `top` (none: no camera).
+std::vector<ShotCamera> parse_cameras(const JsonValue& top);
 ViewParams parse_view(const JsonValue& j);
 
 // What a character's arms keep from its body by default and from what its garments' handles

@@ -1,12 +1,18 @@
-// The `camera` block (docs/scene-format.md, "camera"): the lens and the keyframed path with its cuts.
+// The `camera` block and the `cameras` list (docs/scene-format.md, "camera" and "cameras"): each
+// camera's lens and keyframed path with its cuts, a stereo camera as its two eyes.
 #include "scene/scene_blocks.hpp"
 
+#include <set>
 #include <string>
+
+#include "scene/scene_values.hpp"
 
 namespace vdc {
 
-CameraPath parse_camera(const JsonValue& j) {
-  j.only_keys({"fov", "width", "height", "near", "far", "up", "keys", "focus_distance", "f_stop", "sensor_height", "shutter"});
+namespace {
+
+// The lens and path of one camera entry (`name` and `stereo` read by the caller).
+CameraPath parse_camera_path(const JsonValue& j) {
   Camera lens;
   lens.fov_y_degrees = j.positive_or("fov", lens.fov_y_degrees);
   if (lens.fov_y_degrees >= 180) j.at("fov").fail("must be below 180 degrees");
@@ -50,6 +56,53 @@ CameraPath parse_camera(const JsonValue& j) {
   }
   if (keys.empty()) list.fail("a camera needs at least one key");
   return CameraPath(lens, std::move(keys));
+}
+
+// The camera `j` describes, named `name`: itself, or with `stereo` its left and right eyes, the
+// camera moved half the interaxial distance to either side (`name`_left and `name`_right, or left
+// and right for the unnamed `camera`).
+void add_camera(const JsonValue& j, const std::string& name, std::vector<ShotCamera>& cameras) {
+  const CameraPath path = parse_camera_path(j);
+  const auto stereo = j.find("stereo");
+  if (!stereo) {
+    cameras.push_back({name, path});
+    return;
+  }
+  stereo->only_keys({"interaxial"});
+  const double interaxial = stereo->at("interaxial").positive();
+  if (interaxial > 10) stereo->at("interaxial").fail("must be at most 10 m (the distance between the two eyes)");
+  const std::string prefix = name.empty() ? "" : name + "_";
+  for (const auto& [eye, side] : {std::pair{"left", -0.5}, std::pair{"right", 0.5}}) {
+    Camera lens = path.lens();
+    lens.eye_offset = side * interaxial;
+    cameras.push_back({prefix + eye, CameraPath(lens, path.keys())});
+  }
+}
+
+}  // namespace
+
+std::vector<ShotCamera> parse_cameras(const JsonValue& top) {
+  std::vector<ShotCamera> cameras;
+  const auto one = top.find("camera"), many = top.find("cameras");
+  if (one && many) many->fail("a scene has either one \"camera\" or a list of \"cameras\", not both");
+  if (one) {
+    one->only_keys({"fov", "width", "height", "near", "far", "up", "keys", "focus_distance", "f_stop", "sensor_height", "shutter", "stereo"});
+    add_camera(*one, "", cameras);
+  }
+  if (!many) return cameras;
+  const std::vector<JsonValue> entries = many->items();
+  if (entries.empty()) many->fail("lists no camera: give at least one, or leave \"cameras\" out");
+  std::set<std::string> names;
+  for (const JsonValue& c : entries) {
+    c.only_keys({"name", "fov", "width", "height", "near", "far", "up", "keys", "focus_distance", "f_stop", "sensor_height", "shutter", "stereo"});
+    const std::string name = c.at("name").string();
+    check_name(c.at("name"), name, names);
+    const std::size_t first = cameras.size();
+    add_camera(c, name, cameras);
+    for (std::size_t k = first; k < cameras.size(); ++k)
+      if (k > first || cameras[k].name != name) check_name(c.at("name"), cameras[k].name, names);
+  }
+  return cameras;
 }
 
 }  // namespace vdc

@@ -92,8 +92,8 @@ Simulation::Simulation(Scene scene, const SimOptions& options, Log log, ResumePo
 }
 
 void Simulation::check_options_and_collect_obstacles() {
-  if (options_.mode == SimMode::View && !scene_.camera)
-    throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block to the scene");
+  if (options_.mode == SimMode::View && scene_.cameras.empty())
+    throw InputError(scene_.path, "camera", "--mode view needs a camera: add a \"camera\" block (or \"cameras\") to the scene");
   for (const auto& o : scene_.obstacles) {
     obstacle_faces_.push_back(collision_mesh(o.mesh));
     obstacles_.push_back(o.mesh);
@@ -156,13 +156,14 @@ void Simulation::remesh_garments(FrameStats& stats) {
   for (std::size_t o = 0; o < obstacle_faces_.size(); ++o) stand(obstacle_faces_[o], obstacle_x[o], -1);
   for (std::size_t g = 0; g < garments_.size(); ++g) stand(garment_meshes[g], garment_x[g], static_cast<int>(g));
   // The occlusion test's depth images, once a frame for every garment: the bodies and opaque
-  // garments seen by the window's cameras (none while settling: every factor is 1 then).
-  std::vector<DepthImage> occluders;
+  // garments seen by each camera's window (none while settling: every factor is 1 then).
+  std::vector<std::vector<DepthImage>> occluders;
   if (viewing && (scene_.view.back_occlusion || scene_.view.occlusion) && !(time() + 1e-9 < scene_.view.settle)) {
     const auto tv = std::chrono::steady_clock::now();
     depth_cache_->forget_before(time());
-    occluders = occlusion_images(AnticipationWindow(*scene_.camera, time(), scene_.frame_time, scene_.view), occluders_at(garment_meshes, garment_x),
-                                 scene_.view, options_.threads);
+    for (std::size_t c = 0; c < scene_.cameras.size(); ++c)
+      occluders.push_back(occlusion_images(AnticipationWindow(scene_.cameras[c].path, time(), scene_.frame_time, scene_.view),
+                                           occluders_at(garment_meshes, garment_x, static_cast<int>(c)), scene_.view, options_.threads));
     stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
   }
   const StandingSurfaces standing(std::move(triangles), std::move(owners));
@@ -182,7 +183,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
                                          options_.threads, obstacle_trees);
     if (viewing) {
       auto tv = std::chrono::steady_clock::now();
-      views[gi] = std::make_unique<ViewSizing>(*scene_.camera, scene_.view, time(), scene_.frame_time, options_.threads);
+      views[gi] = std::make_unique<ViewSizing>(scene_.camera_paths(), scene_.view, time(), scene_.frame_time, options_.threads);
       views[gi]->evaluate(garments_[gi], &occluders);
       stats.visible_faces += views[gi]->counts().visible;
       stats.back_facing_faces += views[gi]->counts().back_facing;
@@ -224,10 +225,11 @@ void Simulation::remesh_garments(FrameStats& stats) {
 // motion takes it, drawn once for all groups (the depth cache), then this group's garments not
 // marked sheer moved along their nodes' velocities (held where they are without motion
 // anticipation).
-OccluderDrawing Simulation::occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const {
-  return [this, &garment_meshes, &garment_x](DepthImage& image, double tau) {
+OccluderDrawing Simulation::occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x,
+                                         int camera) const {
+  return [this, &garment_meshes, &garment_x, camera](DepthImage& image, double tau) {
     const double t = time() + tau;
-    image = depth_cache_->at(t, image.camera(), scene_.view.occlusion_scale, [&] {
+    image = depth_cache_->at(camera, t, image.camera(), scene_.view.occlusion_scale, [&] {
       std::vector<Triangle> triangles;
       const Frustum frustum(image.camera());
       auto stand = [&](const ObstacleSpec& spec) {
@@ -256,6 +258,29 @@ OccluderDrawing Simulation::occluders_at(const std::vector<CollisionMesh>& garme
   };
 }
 
+namespace {
+
+// The view's factors on the mesh's faces, for the frame's output and the next frame's linger:
+// the face's factor and what set it, and with several cameras which camera decided and each
+// camera's own factor.
+void record_view(Mesh& mesh, const ViewSizing& view) {
+  auto& factor = mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
+  auto& reason = mesh.face_attrs().get_or_add<double>(kViewReasonAttr, 0.0);
+  for (FaceId f : mesh.faces()) {
+    factor[f] = view.factors()[static_cast<std::size_t>(f.idx)];
+    reason[f] = static_cast<double>(view.reasons()[static_cast<std::size_t>(f.idx)]);
+  }
+  if (view.cameras() == 1) return;
+  auto& decider = mesh.face_attrs().get_or_add<double>(kViewCameraAttr, 0.0);
+  for (FaceId f : mesh.faces()) decider[f] = view.deciders()[static_cast<std::size_t>(f.idx)];
+  for (std::size_t c = 0; c < view.cameras(); ++c) {
+    auto& own = mesh.face_attrs().get_or_add<double>(camera_factor_attr(c, view.cameras()), 1.0);
+    for (FaceId f : mesh.faces()) own[f] = view.camera_factors(c)[static_cast<std::size_t>(f.idx)];
+  }
+}
+
+}  // namespace
+
 // Sizing (Narain et al. 2012, sec. 3) and remeshing touch one garment each, so a character's
 // garments go side by side, each on one thread, the largest first: the view run's garments are
 // too small for the loops inside them to use a second core well. Each garment's result does not
@@ -272,12 +297,7 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
     const auto gi = static_cast<std::size_t>(k);
     Mesh& mesh = garments_[gi];
     if (views[gi]) {
-      auto& factor = mesh.face_attrs().get_or_add<double>(kViewFactorAttr, 1.0);
-      auto& reason = mesh.face_attrs().get_or_add<double>(kViewReasonAttr, 0.0);
-      for (FaceId f : mesh.faces()) {
-        factor[f] = views[gi]->factors()[static_cast<std::size_t>(f.idx)];
-        reason[f] = static_cast<double>(views[gi]->reasons()[static_cast<std::size_t>(f.idx)]);
-      }
+      record_view(mesh, *views[gi]);
     }
     compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
     if (views[gi]) {

@@ -117,7 +117,9 @@ class Simulation {
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
   // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip
   // or collapse makes a garment cross the obstacles or another garment as they were `standing`.
-  OccluderDrawing occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x) const;
+  // What may hide cloth from camera `camera` (an index of scene().cameras).
+  OccluderDrawing occluders_at(const std::vector<CollisionMesh>& garment_meshes, const std::vector<std::vector<Vec3>>& garment_x,
+                               int camera) const;
   std::vector<RemeshStats> size_and_remesh(const std::vector<std::unique_ptr<ViewSizing>>& views,
                                            const std::vector<std::vector<ObstaclePlane>>& planes,
                                            const StandingSurfaces& standing, std::vector<Mesh>& started_with);

@@ -153,6 +153,11 @@ Camera CameraPath::at(double t) const {
   c.position = shots_[s].position.at(t);
   c.target = shots_[s].target.at(t);
   if (c.focus_on_target) c.focus_distance = (c.target - c.position).norm();
+  if (c.eye_offset != 0) {
+    const Vec3 side = c.eye_offset * c.basis()[0];
+    c.position += side;
+    c.target += side;
+  }
   return c;
 }
 

@@ -28,6 +28,9 @@ struct Camera {
   double sensor_height_mm = 24;
   // Motion blur: how long the shutter is open, as a fraction of the frame time (0: no blur).
   double shutter = 0;
+  // m along the camera's right vector: an eye of a parallel stereo rig (CameraPath::at moves
+  // position and target by it), 0 for a camera at its keys.
+  double eye_offset = 0;
 
   // Orthonormal view basis: right, true up, forward (towards the target).
   std::array<Vec3, 3> basis() const;
@@ -94,7 +97,8 @@ class CameraPath {
   // by strictly increasing time, at least one.
   CameraPath(const Camera& lens, std::vector<CameraKey> keys);
   // The camera at time t: within a shot, position and target are interpolated smoothly (cubic
-  // Hermite through the shot's keys); before the first key and after the last it holds.
+  // Hermite through the shot's keys); before the first key and after the last it holds. A stereo
+  // eye (lens.eye_offset) is that camera moved sideways, its view direction kept.
   Camera at(double t) const;
   // Times of the cuts in (t0, t1].
   std::vector<double> cuts_in(double t0, double t1) const;

@@ -2,13 +2,15 @@
 // sec. 3.1).
 #include "view/depth_cache.hpp"
 
+#include <limits>
+
 namespace vdc {
 
-DepthImage DepthCache::at(double t, const Camera& camera, double scale, const std::function<std::vector<Triangle>()>& triangles) {
+DepthImage DepthCache::at(int index, double t, const Camera& camera, double scale, const std::function<std::vector<Triangle>()>& triangles) {
   std::shared_ptr<Entry> entry;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto& slot = entries_[t];
+    auto& slot = entries_[{t, index}];
     if (!slot) slot = std::make_shared<Entry>();
     entry = slot;
   }
@@ -23,7 +25,7 @@ DepthImage DepthCache::at(double t, const Camera& camera, double scale, const st
 
 void DepthCache::forget_before(double t) {
   std::lock_guard<std::mutex> lock(mutex_);
-  entries_.erase(entries_.begin(), entries_.lower_bound(t));
+  entries_.erase(entries_.begin(), entries_.lower_bound({t, std::numeric_limits<int>::min()}));
 }
 
 std::size_t DepthCache::size() const {

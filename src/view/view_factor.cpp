@@ -60,6 +60,10 @@ FaceView face_view(const Frustum& frustum, const Vec3& a, const Vec3& b, const V
   return view;
 }
 
+std::string camera_factor_attr(std::size_t camera, std::size_t count) {
+  return count == 1 ? std::string(kViewFactorAttr) : std::string(kViewFactorAttr) + "_" + std::to_string(camera);
+}
+
 AnticipationWindow::AnticipationWindow(const CameraPath& path, double t, double frame_time, const ViewParams& p) {
   cameras.push_back(path.at(t));
   frusta.emplace_back(cameras.back());

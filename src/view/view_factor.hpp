@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/mesh.hpp"
@@ -20,6 +21,12 @@ namespace vdc {
 inline constexpr const char* kViewFactorAttr = "view_factor";
 // Face attribute: what set the face's resolution at the last view evaluation (ViewReason).
 inline constexpr const char* kViewReasonAttr = "view_reason";
+// Face attribute of a shot with several cameras: the index of the camera whose factor the face
+// took (the one that asks the most of it).
+inline constexpr const char* kViewCameraAttr = "view_camera";
+// The face attribute that keeps camera `camera`'s own factors between frames (for linger), of a
+// shot with `count` cameras: kViewFactorAttr itself when there is one.
+std::string camera_factor_attr(std::size_t camera, std::size_t count);
 // Why a face has the resolution it has: seen (the screen-space floor l_min), turned away, out of
 // frame, seen but its floor set by the lens's blur circle, or by motion blur, or hidden behind
 // something opaque (ViewParams::occlusion).

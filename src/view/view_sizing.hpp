@@ -45,47 +45,76 @@ struct ViewCounts {
 };
 
 
+// With several cameras (a shot filmed from more than one side, a stereo pair), each camera's
+// factors, floors and folds are worked out as if it were the only one, and a face takes the most
+// any camera asks of it: the largest factor (the deciding camera's reason beside it), and the
+// tensor_max of each camera's modified tensor, so that its screen-space floor is the finest any
+// camera needs. A face out of every camera's frame is coarse; one that a single camera sees is
+// as that camera alone would have it.
 class ViewSizing final : public FaceSizingModifier {
  public:
-  ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads = 1);
+  // `cameras`: the shot's cameras, at least one.
+  ViewSizing(std::vector<const CameraPath*> cameras, const ViewParams& params, double time, double frame_time, int threads = 1);
+  ViewSizing(const CameraPath& path, const ViewParams& params, double time, double frame_time, int threads = 1)
+      : ViewSizing(std::vector<const CameraPath*>{&path}, params, time, frame_time, threads) {}
   // View factors of the mesh's faces at the current positions and time (with linger, against
-  // the mesh's kViewFactorAttr from the frame before, when it has one); `occluders`, when given
-  // and not empty, are occlusion_images() of the same window (the back-face rule looks).
-  void evaluate(const Mesh& mesh, const std::vector<DepthImage>* occluders = nullptr);
+  // each camera's factors from the frame before, the mesh's camera_factor_attr, when it has
+  // them); `occluders`, when given, holds for each camera occlusion_images() of its window (the
+  // back-face rule looks), or nothing.
+  void evaluate(const Mesh& mesh, const std::vector<std::vector<DepthImage>>* occluders = nullptr);
   // On the mesh evaluate() saw: its factors, and its visible faces' screen-space floors.
   void modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const override;
-  // The screen-space floor, in pixels, of a visible face whose centre is at `centre` moving at
-  // `velocity` now: l_min, raised to defocus_scale times its blur circle when the camera has
-  // depth of field and to motion_blur_scale times how far its image moves while the shutter is
-  // open when the camera has motion blur (the cloth's motion and the camera's; none across a cut).
-  // `set_by`, when given: seen (l_min), defocused or motion_blurred.
-  double screen_floor(const Vec3& centre, const Vec3& velocity, ViewReason* set_by = nullptr) const;
+  // The screen-space floor, in pixels, of a face visible to camera `camera` whose centre is at
+  // `centre` moving at `velocity` now: l_min, raised to defocus_scale times its blur circle when
+  // the camera has depth of field and to motion_blur_scale times how far its image moves while
+  // the shutter is open when the camera has motion blur (the cloth's motion and the camera's;
+  // none across a cut). `set_by`, when given: seen (l_min), defocused or motion_blurred.
+  double screen_floor(const Vec3& centre, const Vec3& velocity, ViewReason* set_by = nullptr, std::size_t camera = 0) const;
   // Folds finer than the image shows (an extension): on a face in frame where folds of
   // fold_length would span less than its screen-space floor, how much coarser than such folds
   // the face's final tensor lets it be (metric_ratio against fold_length^-2 I), weighted by
-  // fold_weight; 0 where it is not weighted (out of frame, near the camera, fold_length 0).
+  // fold_weight (the least of the cameras that have it in frame: folds any of them shows are
+  // folds); 0 where it is not weighted (out of every frame, near a camera, fold_length 0).
   double fold_coarsening(const Mesh& mesh, FaceId f, const Mat2& sizing) const override;
   bool keeps_compression() const override { return params_.keep_compression; }
-  const std::vector<double>& factors() const { return factor_; }  // by face index
-  const std::vector<ViewReason>& reasons() const { return reason_; }  // by face index
+  const std::vector<double>& factors() const { return factor_; }  // by face index: the largest camera's
+  const std::vector<ViewReason>& reasons() const { return reason_; }  // by face index: the deciding camera's
+  const std::vector<int>& deciders() const { return decider_; }       // by face index: the deciding camera
+  std::size_t cameras() const { return sights_.size(); }
+  const std::vector<double>& camera_factors(std::size_t camera) const { return sights_.at(camera).factor; }  // by face index
   const ViewCounts& counts() const { return counts_; }
 
  private:
+  // One camera's view of the mesh (all by face index but the camera's own state).
+  struct Sight {
+    const CameraPath* path = nullptr;
+    Camera now;                             // the camera at time_
+    std::optional<Camera> shutter_closes;  // the camera when the shutter closes (motion blur)
+    bool lens_blurs = false;               // depth of field or motion blur may raise the floor
+    bool cut_ahead = false;                // a cut falls within eq. 4's window
+    std::vector<double> factor;
+    std::vector<char> visible;        // in frame and facing the camera now
+    std::vector<char> floored;        // under the screen-space floor (visible, or in frame with occlusion)
+    std::vector<ViewReason> reason;
+    std::vector<double> floor;        // the screen-space floor of a visible face, pixels
+    std::vector<double> fold_weight;  // fold_weight of the face's folds on screen
+  };
+  // Eqs. 3 and 4 and the floors of face f for camera `camera` (writing only the face's entries).
+  void see(const Mesh& mesh, FaceId f, std::size_t camera, const AnticipationWindow& window, const std::vector<DepthImage>* occluders,
+           bool settling);
   double anticipated_factor(const Mesh& mesh, FaceId f, const AnticipationWindow& window, const std::vector<DepthImage>* occluders) const;
-  const CameraPath& path_;
+  // Eq. 2 and eqs. 5 to 8 for one camera: the tensor camera `sight` alone would give face f.
+  Mat2 camera_tensor(const Mesh& mesh, FaceId f, const Sight& sight, const Mat2& physical, const Mat2& motion) const;
+  // The faces' factors, reasons and folds from every camera's, and the counts.
+  void decide(const std::vector<FaceId>& faces);
   ViewParams params_;
   double time_, frame_time_;
   int threads_;
+  std::vector<Sight> sights_;
   std::vector<double> factor_;
-  std::vector<char> visible_;  // by face index: in frame and facing the camera now
-  std::vector<char> floored_;  // by face index: under the screen-space floor (visible, or in frame with occlusion)
-  std::vector<ViewReason> reason_;  // by face index
-  std::vector<double> floor_;       // by face index: the screen-space floor of a visible face, pixels
-  std::vector<double> fold_weight_;  // by face index: fold_weight of the face's folds on screen
-  Camera now_;                 // the camera at time_
-  std::optional<Camera> shutter_closes_;  // the camera when the shutter closes (motion blur)
-  bool lens_blurs_ = false;               // depth of field or motion blur may raise the floor
-  bool cut_ahead_ = false;                // a cut falls within eq. 4's window
+  std::vector<ViewReason> reason_;
+  std::vector<int> decider_;
+  std::vector<double> fold_weight_;
   ViewCounts counts_;
 };
 

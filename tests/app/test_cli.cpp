@@ -24,6 +24,7 @@
 #include "core/binary_io.hpp"
 #include "core/error.hpp"
 #include "core/mesh.hpp"
+#include "io/ply.hpp"
 #include "output/checkpoint.hpp"
 #include "physics/cloth_model.hpp"
 #include "physics/membrane.hpp"
@@ -780,6 +781,48 @@ TEST_F(CliTest, RunWritesTheCameraOfEveryFrame) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "camera.json"));
   EXPECT_FALSE(fs::exists(dir_ / "out" / "camera.chan"));
   EXPECT_EQ(out_.str().find("to look at it"), std::string::npos) << "no camera, nothing to draw through";
+}
+
+// A shot with two named cameras, one over the sheet and one looking away from it, writes each
+// camera's files (and no camera.json), says in its PLY files which camera decided each face (the
+// one over the sheet, as the other sees none of it), and render and fidelity look through the
+// camera --camera names; a stereo camera's eyes are written as left and right.
+TEST_F(CliTest, AShotWithSeveralCamerasWritesEachAndLooksThroughTheOneNamed) {
+  const std::string lens = R"("fov": 40, "width": 96, "height": 72, )";
+  const std::string path = scene("", R"("cameras": [{"name": "over", )" + lens +
+                                         R"("keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}]},
+      {"name": "away", )" + lens + R"("keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 3, 3]}]}], )");
+  ASSERT_EQ(run({"run", path, "--out", out_dir(), "--frames", "2", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
+  EXPECT_NE(out_.str().find(out_dir() + "/camera_over.chan the camera"), std::string::npos) << out_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "camera.json"));
+  for (const std::string name : {"over", "away"}) {
+    ASSERT_TRUE(fs::exists(dir_ / "out" / ("camera_" + name + ".chan"))) << name;
+    const nlohmann::json camera = nlohmann::json::parse(std::ifstream(dir_ / "out" / ("camera_" + name + ".json")));
+    EXPECT_EQ(camera["name"], name);
+    EXPECT_EQ(camera["index"], name == "over" ? 0 : 1);
+    EXPECT_EQ(camera["frames"].size(), 3u);
+  }
+  const PlyFaceValues ply = read_ply_with_face_values((dir_ / "out" / "frames" / "cloth_s.0002.ply").string());
+  ASSERT_EQ(ply.more.count("camera"), 1u);
+  ASSERT_FALSE(ply.more.at("camera").empty());
+  for (const double decider : ply.more.at("camera")) EXPECT_EQ(decider, 0.0);
+
+  ASSERT_EQ(run({"render", path, out_dir(), "--camera", "away", "--scale", "1"}), kExitOk) << err_.str();
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "render_away" / "frame_0002.png"));
+  ASSERT_EQ(run({"fidelity", path, out_dir(), out_dir(), "--camera", "over", "--scale", "1"}), kExitOk) << out_.str() << err_.str();
+  const auto frames = csv_rows(dir_ / "out" / "fidelity_over" / "fidelity.csv");
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_GT(std::stoi(frames[2].at("cloth_pixels_run")), 300) << "the camera over the sheet sees it";
+
+  const std::string stereo = write("stereo.json", read_file(scene("", R"("camera": {)" + lens + R"("stereo": {"interaxial": 0.1},
+      "keys": [{"time": 0, "position": [0.5, 1.5, 1.5], "target": [0.5, 0, -0.5]}]}, )")));
+  ASSERT_EQ(run({"run", stereo, "--out", out_dir(), "--frames", "1", "--threads", "1", "--mode", "view"}), kExitOk) << err_.str();
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "camera_over.json")) << "an earlier run's cameras removed";
+  const nlohmann::json left = nlohmann::json::parse(std::ifstream(dir_ / "out" / "camera_left.json"));
+  const nlohmann::json right = nlohmann::json::parse(std::ifstream(dir_ / "out" / "camera_right.json"));
+  EXPECT_EQ(left["eye_offset"], -0.05);
+  EXPECT_EQ(right["eye_offset"], 0.05);
+  EXPECT_NEAR(right["frames"][0]["position"][0].get<double>() - left["frames"][0]["position"][0].get<double>(), 0.1, 1e-12);
 }
 
 // A view run whose scene settles says which frames it sizes as the adaptive run does: with

@@ -184,7 +184,7 @@ TEST_F(ReportTest, TheReportOpensInABrowserAndShowsTheRuns) {
   const Scene scene = load_scene(scene_);
   auto cloth_pixels = [&](int frame) {
     FrameFiles cloth{{"cloth_s", view_frames.at(frame).at("cloth_s")}};
-    const DrawnFrame drawn = draw_frame(scene.camera->at(frame * scene.frame_time), cloth, 1.0);
+    const DrawnFrame drawn = draw_frame(scene.cameras.front().path.at(frame * scene.frame_time), cloth, 1.0);
     return static_cast<double>(std::count(drawn.pixels.mesh.begin(), drawn.pixels.mesh.end(), 0));
   };
   const double expected_first = cloth_pixels(0);

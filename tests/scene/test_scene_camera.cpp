@@ -1,5 +1,6 @@
-// The `camera` block: the lens's defaults and values, the keys in order with their cuts, the
-// focus following the target, and errors naming the key (a key's by its index).
+// The `camera` block and the `cameras` list: the lens's defaults and values, the keys in order
+// with their cuts, the focus following the target, a stereo camera's eyes, named cameras, and
+// errors naming the key (a key's by its index).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,9 +14,22 @@ namespace {
 using test::input_error;
 using test::json_block;
 
+// The cameras of a scene whose top level is `top`.
+std::vector<ShotCamera> cameras(const std::string& top) { return parse_cameras(json_block(top, "")); }
+
+// The one camera of a `camera` block.
+CameraPath parse_camera(const JsonValue& block) {
+  const std::vector<ShotCamera> got = cameras(R"({"camera": )" + block.raw().dump() + "}");
+  EXPECT_EQ(got.size(), 1u);
+  EXPECT_EQ(got.front().name, "");
+  return got.front().path;
+}
+
 CameraPath camera(const std::string& lens_keys) {
   return parse_camera(json_block("{" + lens_keys + R"("keys": [{"time": 0, "position": [0, 1, 4], "target": [0, 1, 0]}]})", "camera"));
 }
+
+const std::string kKeys = R"("keys": [{"time": 0, "position": [0, 1, 4], "target": [0, 1, 0]}, {"time": 1, "position": [4, 1, 0], "target": [0, 1, 0]}])";
 
 TEST(SceneCamera, TheLensDefaultsAndValues) {
   const Camera plain = camera("").lens();
@@ -66,6 +80,65 @@ TEST(SceneCamera, ErrorsNameTheKey) {
   const std::string inside = error(R"({"focus_distance": 0.03, "keys": []})");
   EXPECT_EQ(inside.rfind("scene.json:camera.focus_distance: must be beyond the focal length (32.96", 0), 0u) << inside;
   EXPECT_NEAR(Camera{}.focal_length_mm(), 12 / std::tan(20 * M_PI / 180), 1e-9);
+}
+
+// A stereo camera is its two eyes, half the interaxial distance either side of the camera
+// along its right vector at every time, looking the same way; named left and right, or after
+// their camera.
+TEST(SceneCamera, AStereoCameraIsItsTwoEyes) {
+  const std::vector<ShotCamera> pair = cameras(R"({"camera": {"stereo": {"interaxial": 0.065}, )" + kKeys + "}}");
+  ASSERT_EQ(pair.size(), 2u);
+  EXPECT_EQ(pair[0].name, "left");
+  EXPECT_EQ(pair[1].name, "right");
+  const CameraPath centre = cameras(R"({"camera": {)" + kKeys + "}}").front().path;
+  for (double t : {0.0, 0.37, 1.0}) {
+    const Camera c = centre.at(t), left = pair[0].path.at(t), right = pair[1].path.at(t);
+    const Vec3 side = c.basis()[0];
+    EXPECT_NEAR((left.position - (c.position - 0.0325 * side)).norm(), 0.0, 1e-12) << t;
+    EXPECT_NEAR((right.position - (c.position + 0.0325 * side)).norm(), 0.0, 1e-12) << t;
+    EXPECT_NEAR((right.basis()[2] - c.basis()[2]).norm(), 0.0, 1e-12) << "parallel eyes, t " << t;
+    EXPECT_NEAR((left.basis()[2] - c.basis()[2]).norm(), 0.0, 1e-12) << "parallel eyes, t " << t;
+  }
+  const std::vector<ShotCamera> named = cameras(R"({"cameras": [{"name": "a", )" + kKeys + R"(}, {"name": "b", "stereo": {"interaxial": 0.1}, )" +
+                                                kKeys + "}]}");
+  ASSERT_EQ(named.size(), 3u);
+  EXPECT_EQ(named[0].name, "a");
+  EXPECT_EQ(named[1].name, "b_left");
+  EXPECT_EQ(named[2].name, "b_right");
+  EXPECT_EQ(named[2].path.lens().eye_offset, 0.05);
+}
+
+TEST(SceneCamera, NamedCamerasEachWithTheirOwnLensAndKeys) {
+  const std::vector<ShotCamera> two = cameras(R"({"cameras": [{"name": "wide", )" + kKeys + R"(},
+      {"name": "close", "fov": 20, "width": 640, "height": 480, "keys": [{"time": 0, "position": [1, 1, 1], "target": [0, 1, 0]},
+       {"time": 0.5, "position": [0, 1, 2], "target": [0, 1, 0], "cut": true}]}]})");
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0].name, "wide");
+  EXPECT_EQ(two[0].path.lens().fov_y_degrees, Camera{}.fov_y_degrees);
+  EXPECT_TRUE(two[0].path.cuts_in(0, 2).empty());
+  EXPECT_EQ(two[1].name, "close");
+  EXPECT_EQ(two[1].path.lens().fov_y_degrees, 20.0);
+  EXPECT_EQ(two[1].path.lens().width, 640);
+  EXPECT_EQ(two[1].path.cuts_in(0, 2), std::vector<double>{0.5});
+  EXPECT_TRUE(cameras("{}").empty());
+}
+
+TEST(SceneCamera, CamerasErrorsNameTheKey) {
+  auto error = [](const std::string& text) { return input_error([&] { parse_cameras(json_block(text, "")); }); };
+  const std::string one = R"({"name": "a", )" + kKeys + "}";
+  EXPECT_EQ(error(R"({"cameras": [)" + one + ", " + one + "]}"), "scene.json:cameras[1].name: name 'a' is used twice");
+  EXPECT_EQ(error(R"({"camera": {)" + kKeys + R"(}, "cameras": [)" + one + "]}"),
+            "scene.json:cameras: a scene has either one \"camera\" or a list of \"cameras\", not both");
+  EXPECT_EQ(error(R"({"cameras": []})"), "scene.json:cameras: lists no camera: give at least one, or leave \"cameras\" out");
+  EXPECT_EQ(error(R"({"cameras": [{)" + kKeys + "}]}"), "scene.json:cameras[0].name: required key is missing");
+  EXPECT_EQ(error(R"({"cameras": [{"name": "a b", )" + kKeys + "}]}"),
+            "scene.json:cameras[0].name: names must be non-empty, without spaces, dots or slashes (they name output files)");
+  EXPECT_EQ(error(R"({"cameras": [{"name": "b_left", )" + kKeys + R"(}, {"name": "b", "stereo": {"interaxial": 0.1}, )" + kKeys + "}]}"),
+            "scene.json:cameras[1].name: name 'b_left' is used twice");
+  EXPECT_EQ(error(R"({"camera": {"name": "a", )" + kKeys + "}}").rfind("scene.json:camera.name: unknown key", 0), 0u);
+  EXPECT_EQ(error(R"({"camera": {"stereo": {"interaxial": 0}, )" + kKeys + "}}"),
+            "scene.json:camera.stereo.interaxial: must be greater than 0, found 0");
+  EXPECT_EQ(error(R"({"camera": {"stereo": {}, )" + kKeys + "}}"), "scene.json:camera.stereo.interaxial: required key is missing");
 }
 
 }  // namespace

@@ -236,26 +236,26 @@ TEST(DepthCache, DrawsEachTimeOnceForAllWhoAskAndForgetsThePast) {
   };
   std::vector<std::thread> groups;
   std::vector<std::optional<DepthImage>> got(4);
-  for (std::size_t g = 0; g < got.size(); ++g) groups.emplace_back([&, g] { got[g].emplace(cache.at(0.1, front_camera(), 0.125, the_wall)); });
+  for (std::size_t g = 0; g < got.size(); ++g) groups.emplace_back([&, g] { got[g].emplace(cache.at(0, 0.1, front_camera(), 0.125, the_wall)); });
   for (auto& t : groups) t.join();
   EXPECT_EQ(drawn, 1);
   for (auto& image : got) {
     image->erode(1);
     EXPECT_TRUE(image->hidden(Vec3(0.1, 0.2, -0.5), 0.02));
   }
-  DepthImage mine = cache.at(0.1, front_camera(), 0.125, the_wall);
+  DepthImage mine = cache.at(0, 0.1, front_camera(), 0.125, the_wall);
   mine.draw({facing_at(Vec3(1.2, 0, 1), 1.0)});  // added to the copy only
   mine.erode(0);
   const Vec3 behind_it(1.5, 0.2, 0.5);  // behind that square, beside the wall
   EXPECT_TRUE(mine.hidden(behind_it, 0.02));
-  cache.at(0.2, front_camera(), 0.125, the_wall);
+  cache.at(0, 0.2, front_camera(), 0.125, the_wall);
   EXPECT_EQ(drawn, 2);
   EXPECT_EQ(cache.size(), 2u);
   cache.forget_before(0.15);
   EXPECT_EQ(cache.size(), 1u);
-  cache.at(0.1, front_camera(), 0.125, the_wall);
+  cache.at(0, 0.1, front_camera(), 0.125, the_wall);
   EXPECT_EQ(drawn, 3);  // forgotten, drawn again
-  DepthImage again = cache.at(0.1, front_camera(), 0.125, the_wall);
+  DepthImage again = cache.at(0, 0.1, front_camera(), 0.125, the_wall);
   again.erode(0);
   EXPECT_FALSE(again.hidden(behind_it, 0.02));  // the square was added to `mine` only
   EXPECT_EQ(drawn, 3);

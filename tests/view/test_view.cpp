@@ -250,8 +250,8 @@ TEST(ViewSizing, HiddenFacesKeepTheScreenSpaceFloorButNotTheCeiling) {
   const AnticipationWindow window(path, 0.0, 0.04, p);
   // A square at y = 1 between the camera and the sheet, facing up.
   const Vec3 a(-1, 1, 1), b(1, 1, 1), c(1, 1, -1), d(-1, 1, -1);
-  const std::vector<DepthImage> hiding = occlusion_images(window, [&](DepthImage& image, double) { image.draw({{a, b, c}, {a, c, d}}); }, p);
-  const std::vector<DepthImage> open = occlusion_images(window, [&](DepthImage&, double) {}, p);
+  const std::vector<std::vector<DepthImage>> hiding{occlusion_images(window, [&](DepthImage& image, double) { image.draw({{a, b, c}, {a, c, d}}); }, p)};
+  const std::vector<std::vector<DepthImage>> open{occlusion_images(window, [&](DepthImage&, double) {}, p)};
   const double f = 360 / std::tan(20 * M_PI / 180);
   const std::vector<Mat2> no_motion(static_cast<std::size_t>(m.face_capacity()), Mat2::Zero());
   for (const bool hidden : {true, false}) {

@@ -3,8 +3,8 @@
 # At every written frame each imported object must hold the vertex and face counts of its OBJ
 # (counted here from the file's lines), each cloth mesh its `pattern` UV layer and, with a PLY,
 # its `view` face attribute
-# equal to the PLY's values, and the camera the position and viewing direction of camera.json,
-# turned from y-up to z-up. Exit status 1 on any difference.
+# equal to the PLY's values, and each camera the position and viewing direction of its
+# camera.json or camera_NAME.json, turned from y-up to z-up. Exit status 1 on any difference.
 import json
 import os
 import sys
@@ -71,6 +71,10 @@ for (kind, name), by_frame in files.items():
                 reason = obj.data.attributes.get("view_reason")
                 check(reason is not None and [a.value for a in reason.data] == [int(r) for r in columns["reason"]],
                       "%s frame %d: view_reason attribute differs from the PLY" % (obj.name, frame))
+            if "camera" in columns:
+                decider = obj.data.attributes.get("view_camera")
+                check(decider is not None and [a.value for a in decider.data] == [int(c) for c in columns["camera"]],
+                      "%s frame %d: view_camera attribute differs from the PLY" % (obj.name, frame))
             values = columns["view"]
             attribute = obj.data.attributes.get("view")
             check(attribute is not None and attribute.domain == "FACE", "%s frame %d: no view face attribute" % (obj.name, frame))
@@ -80,14 +84,16 @@ for (kind, name), by_frame in files.items():
                       "%s frame %d: view attribute differs from the PLY" % (obj.name, frame))
         checked += 1
 
-camera_path = os.path.join(run_dir, "camera.json")
 cameras = 0
-if os.path.exists(camera_path):
-    with open(camera_path) as file:
-        frames = json.load(file)["frames"]
-    camera = scene.camera
+for k, camera_path in enumerate(vdcloth_import.camera_files(run_dir)):
     with open(camera_path) as file:
         lens = json.load(file)
+    frames = lens["frames"]
+    camera = bpy.data.objects.get("shot_" + lens["name"] if "name" in lens else "shot")
+    check(camera is not None, "no camera object for %s" % camera_path)
+    if camera is None:
+        continue
+    check((scene.camera == camera) == (k == 0), "%s: the scene's camera is the first camera, not another" % camera.name)
     dof = lens.get("depth_of_field")
     check(camera.data.dof.use_dof == bool(dof), "camera depth of field %s, camera.json %s" % (camera.data.dof.use_dof, dof))
     if dof:

@@ -112,6 +112,10 @@ def build_mesh(name, path):
         if len(columns.get("reason", [])) == len(mesh.polygons):
             attribute = mesh.attributes.new(name="view_reason", type="INT", domain="FACE")
             attribute.data.foreach_set("value", [int(r) for r in columns["reason"]])
+        # A shot with several cameras: the camera whose factor the face took (its index).
+        if len(columns.get("camera", [])) == len(mesh.polygons):
+            attribute = mesh.attributes.new(name="view_camera", type="INT", domain="FACE")
+            attribute.data.foreach_set("value", [int(c) for c in columns["camera"]])
     mesh.update()
     mesh.use_fake_user = True  # kept while another frame's mesh is shown
     return mesh
@@ -128,13 +132,28 @@ def camera_matrix(frame):
     return m
 
 
-def import_camera(run_dir, scene, collection):
-    path = os.path.join(run_dir, "camera.json")
-    if not os.path.exists(path):
-        return None
+def camera_files(run_dir):
+    """The run's camera files in the scene's order: camera.json (the scene's one camera), or
+    camera_NAME.json for each of its named cameras (ordered by their "index")."""
+    single = os.path.join(run_dir, "camera.json")
+    if os.path.exists(single):
+        return [single]
+    named = []
+    for name in os.listdir(run_dir):
+        if name.startswith("camera_") and name.endswith(".json"):
+            path = os.path.join(run_dir, name)
+            with open(path) as f:
+                named.append((json.load(f).get("index", 0), name, path))
+    return [path for _, _, path in sorted(named)]
+
+
+def import_camera(path, scene, collection, first):
+    """One camera, keyed at every frame: object "shot" (camera.json) or "shot_NAME"; the first
+    becomes the scene's camera and sets the render's size, speed and motion blur."""
     with open(path) as f:
         cam = json.load(f)
-    data = bpy.data.cameras.new("shot")
+    label = "shot_" + cam["name"] if "name" in cam else "shot"
+    data = bpy.data.cameras.new(label)
     data.sensor_fit = "VERTICAL"
     if "sensor_height_mm" in cam:
         data.sensor_height = cam["sensor_height_mm"]
@@ -145,10 +164,10 @@ def import_camera(run_dir, scene, collection):
         data.dof.use_dof = True
         data.dof.focus_distance = dof["focus_distance"]
         data.dof.aperture_fstop = dof["f_stop"]
-    if cam.get("shutter"):
+    if cam.get("shutter") and first:
         scene.render.use_motion_blur = True
         scene.render.motion_blur_shutter = cam["shutter"]
-    obj = bpy.data.objects.new("shot", data)
+    obj = bpy.data.objects.new(label, data)
     collection.objects.link(obj)
     obj.rotation_mode = "XYZ"
     for frame in cam["frames"]:
@@ -166,9 +185,10 @@ def import_camera(run_dir, scene, collection):
     for curve in curves:
         for key in curve.keyframe_points:
             key.interpolation = "CONSTANT"
-    scene.camera = obj
-    scene.render.resolution_x, scene.render.resolution_y = cam["width"], cam["height"]
-    scene.render.fps = max(1, round(1.0 / cam["frame_time"]))
+    if first:
+        scene.camera = obj
+        scene.render.resolution_x, scene.render.resolution_y = cam["width"], cam["height"]
+        scene.render.fps = max(1, round(1.0 / cam["frame_time"]))
     return obj
 
 
@@ -208,9 +228,8 @@ def import_run(run_dir, every=1, context=None):
         collection.objects.link(obj)
         made.append(obj)
         all_frames.update(frames)
-    camera = import_camera(run_dir, scene, collection)
-    if camera is not None:
-        made.append(camera)
+    for k, path in enumerate(camera_files(run_dir)):
+        made.append(import_camera(path, scene, collection, k == 0))
     scene.frame_start, scene.frame_end = min(all_frames), max(all_frames)
     if show_frame not in bpy.app.handlers.frame_change_pre:
         bpy.app.handlers.frame_change_pre.append(show_frame)
@@ -219,7 +238,7 @@ def import_run(run_dir, every=1, context=None):
 
 
 class ImportVdclothRun(bpy.types.Operator, ImportHelper):
-    """Load a vdcloth run directory (its frames/ and camera.json)"""
+    """Load a vdcloth run directory (its frames/ and its cameras)"""
 
     bl_idname = "import_scene.vdcloth_run"
     bl_label = "Import vdcloth run"

@@ -201,6 +201,7 @@ const vdcloth = (() => {
     showing: Promise.resolve(),
     charts: {},
     framed: false,     // the orbit camera placed on the meshes (runs without a camera)
+    cameraIndex: 0,    // which of the run's cameras the shot camera is
   };
 
   function style() {
@@ -210,17 +211,31 @@ const vdcloth = (() => {
     };
   }
 
-  function cameraData() {
-    for (const run of runs) if (run.camera && run.camera.frames && run.camera.frames.length) return run.camera;
-    return null;
+  // The run's cameras (camera.json, or each camera_NAME.json of a scene with several).
+  function cameraList() {
+    for (const run of runs) {
+      const list = (run.cameras || (run.camera ? [run.camera] : [])).filter((c) => c && c.frames && c.frames.length);
+      if (list.length) return list;
+    }
+    return [];
   }
 
-  // Sets the shot camera to the scene's camera at `frame` (camera.json).
+  // The shot camera chosen (the first, or the one `vdcloth report --camera` or the page chose).
+  function cameraData() {
+    const list = cameraList();
+    return list.length ? list[Math.min(state.cameraIndex, list.length - 1)] : null;
+  }
+
+  // Sets the shot camera to the chosen camera at `frame` (its lens too).
   function placeShotCamera(frame) {
     const data = cameraData();
     if (!data) return;
     const key = data.frames.find((k) => k.frame === frame) || data.frames[Math.min(frame, data.frames.length - 1)];
     const camera = state.shotCamera;
+    camera.fov = data.fov_y_degrees;
+    camera.near = data.near;
+    camera.far = data.far;
+    camera.updateProjectionMatrix();
     camera.position.set(...key.position);
     camera.up.set(...key.up);
     camera.lookAt(new THREE.Vector3(...key.target));
@@ -289,6 +304,17 @@ const vdcloth = (() => {
       document.getElementById('viewer-section').classList.add('empty');
       return;
     }
+    state.cameraIndex = runs[0].initial_camera || 0;
+    const choice = document.getElementById('camera-choice');
+    const list = cameraList();
+    // One choice a camera: "shot camera", or each named camera of a run with several.
+    list.forEach((c, k) => {
+      const option = k === 0 ? choice.querySelector('option[value="shot"]') : document.createElement('option');
+      if (k > 0) option.value = 'shot:' + k;
+      option.textContent = c.name ? 'camera ' + c.name : 'shot camera';
+      if (k > 0) choice.insertBefore(option, choice.querySelector('option[value="orbit"]'));
+    });
+    choice.value = state.cameraIndex > 0 ? 'shot:' + state.cameraIndex : 'shot';
     const data = cameraData();
     const width = data ? data.width : 1280, height = data ? data.height : 720;
     const scale = Math.min(1, (runs.length > 1 ? 640 : 960) / width);
@@ -320,7 +346,12 @@ const vdcloth = (() => {
     const timeline = document.getElementById('timeline');
     timeline.max = state.frames.length - 1;
     timeline.addEventListener('input', () => showIndex(Number(timeline.value)));
-    document.getElementById('camera-choice').addEventListener('change', drawAll);
+    document.getElementById('camera-choice').addEventListener('change', () => {
+      const value = document.getElementById('camera-choice').value;
+      if (value !== 'orbit') state.cameraIndex = value.startsWith('shot:') ? Number(value.slice(5)) : 0;
+      placeShotCamera(state.frames[state.index]);
+      drawAll();
+    });
     document.getElementById('colour-choice').addEventListener('change', redraw);
     document.getElementById('wireframe').addEventListener('change', redraw);
     document.getElementById('play').addEventListener('click', togglePlay);
