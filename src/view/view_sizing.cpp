@@ -211,12 +211,19 @@ Mat2 ViewSizing::camera_tensor(const Mesh& mesh, FaceId f, const Sight& sight, c
   return screen_space_bounds(m, sight.now.projection_jacobian(centre), dx * du.inverse(), l_min, l_max);
 }
 
+Mat2 finer_tensor(const Mat2& a, const Mat2& b) {
+  const Mat2 d = b - a;  // symmetric: semidefinite when both diagonal entries share the sign of a non-negative determinant
+  if (d.determinant() >= 0 && d(0, 0) <= 0 && d(1, 1) <= 0) return a;
+  if (d.determinant() >= 0 && d(0, 0) >= 0 && d(1, 1) >= 0) return b;
+  return tensor_max(a, b);
+}
+
 void ViewSizing::modify(const Mesh& mesh, const std::vector<Mat2>& motion, Attribute<FaceTag, Mat2>& face_sizing) const {
   for (FaceId f : mesh.faces()) {
     const Mat2& physical = face_sizing[f];
     const Mat2& moving = motion[static_cast<std::size_t>(f.idx)];
     Mat2 m = camera_tensor(mesh, f, sights_.front(), physical, moving);
-    for (std::size_t k = 1; k < sights_.size(); ++k) m = tensor_max(m, camera_tensor(mesh, f, sights_[k], physical, moving));
+    for (std::size_t k = 1; k < sights_.size(); ++k) m = finer_tensor(m, camera_tensor(mesh, f, sights_[k], physical, moving));
     face_sizing[f] = m;
   }
 }

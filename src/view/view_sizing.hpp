@@ -45,10 +45,16 @@ struct ViewCounts {
 };
 
 
+// The finer of two cameras' tensors: one that asks at least as much as the other in every
+// direction, bit for bit (so that cameras asking the same, as every camera does while the drape
+// settles, leave the physical tensor as it is: sizing takes any change for coarsening), else
+// their tensor_max.
+Mat2 finer_tensor(const Mat2& a, const Mat2& b);
+
 // With several cameras (a shot filmed from more than one side, a stereo pair), each camera's
 // factors, floors and folds are worked out as if it were the only one, and a face takes the most
 // any camera asks of it: the largest factor (the deciding camera's reason beside it), and the
-// tensor_max of each camera's modified tensor, so that its screen-space floor is the finest any
+// finer_tensor of each camera's modified tensor, so that its screen-space floor is the finest any
 // camera needs. A face out of every camera's frame is coarse; one that a single camera sees is
 // as that camera alone would have it.
 class ViewSizing final : public FaceSizingModifier {

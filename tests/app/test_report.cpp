@@ -330,6 +330,39 @@ TEST_F(ReportTest, BlenderLoadsTheRunAsItWasWritten) {
 
 }
 
+// A run with two cameras, one looking at the sheet and one away from it: the page offers each
+// (the one --camera names first), and switching shows the sheet through the first and nothing
+// through the second; Blender gets both cameras, each keyed as its file says.
+TEST_F(ReportTest, ARunWithSeveralCamerasShowsEachInThePageAndInBlender) {
+  std::string two = kScene;
+  const std::string one_camera = two.substr(two.find(R"( "camera": {)"), two.find(R"( "obstacles")") - two.find(R"( "camera": {)"));
+  two.replace(two.find(one_camera), one_camera.size(),
+              R"( "cameras": [{"name": "sheet", "fov": 40, "width": 320, "height": 240, "keys": [{"time": 0, "position": [0.5, 0.6, 1.6], "target": [0.5, 0.0, -0.5]}]},)"
+              R"( {"name": "away", "fov": 40, "width": 320, "height": 240, "keys": [{"time": 0, "position": [0.5, 0.6, 1.6], "target": [0.5, 0.6, 3.0]}]}],)");
+  scene_ = write("two.json", two);
+  const std::string view = run("view", "view");
+  ASSERT_EQ(cli({"report", view, "--camera", "away"}), kExitOk) << err_.str();
+  const std::string name = browser();
+  ASSERT_FALSE(name.empty()) << "no headless Chromium: scripts/install-deps.sh installs chromium-headless-shell";
+  const json result = open_page(name, fs::path(view) / "report" / "index.html");
+  ASSERT_TRUE(result.is_object());
+  EXPECT_TRUE(result["errors"].empty()) << result["errors"].dump();
+  EXPECT_EQ(result["cameras"], json::parse(R"([["shot", "camera sheet"], ["shot:1", "camera away"], ["orbit", "orbit"]])"));
+  EXPECT_EQ(result["shown"][0]["cloth_pixels"], 0) << "the page starts with the camera --camera names, which looks away";
+  const json& shown = result["shown"];
+  ASSERT_EQ(shown.size(), 6u);
+  EXPECT_EQ(shown[4]["style"], "shot");
+  EXPECT_GT(shown[4]["cloth_pixels"].get<double>(), 1000);
+  EXPECT_EQ(shown[5]["style"], "shot:1");
+  EXPECT_EQ(shown[5]["cloth_pixels"], 0);
+
+  ASSERT_EQ(capture("command -v blender >/dev/null 2>&1").status, 0) << "no blender: scripts/install-deps.sh installs it";
+  const Output blender = capture("blender -b --factory-startup --python '" + std::string(VDCLOTH_SOURCE_DIR) + "/tools/blender/check_import.py' -- '" +
+                                 view + "' 2>&1");
+  EXPECT_EQ(blender.status, 0) << blender.text;
+  EXPECT_NE(blender.text.find("check_import: 10 object frames and 10 camera frames checked, 0 failure(s)"), std::string::npos) << blender.text;
+}
+
 // A run's record: stats.csv's columns as numbers (nan and inf, which a failed run's last row
 // may hold, as null), its log's lines, no check or camera when the run has none.
 TEST(ReportData, ARunsRecordHoldsItsTables) {

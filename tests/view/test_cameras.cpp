@@ -1,5 +1,5 @@
 // Several cameras in one view-dependent sizing: each face takes the most any camera asks of it,
-// the largest of the single-camera factors and the tensor_max of the single-camera tensors,
+// the largest of the single-camera factors and the finer of the single-camera tensors,
 // face by face; a face one camera sees is as that camera alone would have it, one out of every
 // frame is coarse, and a camera's cut is anticipated for that camera alone.
 #include <gtest/gtest.h>
@@ -62,7 +62,7 @@ TEST(ViewCameras, EachFaceTakesTheMostAnyCameraAsksOfIt) {
     if (fa != fb) {
       EXPECT_EQ(both.deciders()[i], fa > fb ? 0 : 1) << "face " << i;
     }
-    EXPECT_EQ(t2[i], tensor_max(ta[i], tb[i])) << "face " << i;
+    EXPECT_EQ(t2[i], finer_tensor(ta[i], tb[i])) << "face " << i;
     // At least as fine as each camera asks; as camera 0 (1) alone where camera 1 (0) sees the
     // face not at all, far out of its frame (v_out), and the nearer camera's floor where both see it.
     const double finest = std::min(shortest_edge(ta[i]), shortest_edge(tb[i]));
@@ -125,6 +125,20 @@ TEST(ViewCameras, ACutIsAnticipatedForItsCameraAlone) {
   EXPECT_GT(shown_after_cut, 100);
 }
 
+// The finer of two tensors: the one at least as fine in every direction, as it is; else their
+// tensor_max, finer than either along the axes of their sum.
+TEST(ViewCameras, TheFinerTensorKeepsTheOneThatAsksMore) {
+  const Mat2 fine = Vec2(400, 100).asDiagonal(), coarse = Vec2(100, 25).asDiagonal();
+  Mat2 tilted;
+  tilted << 300, 120, 120, 90;
+  EXPECT_EQ(finer_tensor(fine, coarse), fine);
+  EXPECT_EQ(finer_tensor(coarse, fine), fine);
+  EXPECT_EQ(finer_tensor(tilted, tilted), tilted);
+  const Mat2 crossing = Vec2(100, 400).asDiagonal();  // finer along y, coarser along x
+  EXPECT_EQ(finer_tensor(fine, crossing), tensor_max(fine, crossing));
+  EXPECT_EQ(finer_tensor(fine, crossing), Mat2(Vec2(400, 400).asDiagonal()));
+}
+
 // A pair of cameras at one place is that camera: the same factors and tensors, bit for bit.
 TEST(ViewCameras, TwoCopiesOfOneCameraAreThatCamera) {
   Mesh m = four_metre_sheet();
@@ -140,7 +154,7 @@ TEST(ViewCameras, TwoCopiesOfOneCameraAreThatCamera) {
     const auto i = static_cast<std::size_t>(f.idx);
     EXPECT_EQ(two.factors()[i], one.factors()[i]);
     EXPECT_EQ(two.deciders()[i], 0);
-    EXPECT_NEAR((t2[i] - t1[i]).norm(), 0.0, 1e-12 * t1[i].norm()) << "face " << i;
+    EXPECT_EQ(t2[i], t1[i]) << "face " << i;
   }
   EXPECT_EQ(two.counts().visible, one.counts().visible);
 }

@@ -607,6 +607,15 @@ const vdcloth = (() => {
       document.getElementById('colour-choice').value = 'reason';
       await redraw();
       out.shown.push({ style: 'reason wireframe', cloth_pixels: viewer.countPixels(camera, false), reasons: viewer.shown.reasons });
+      // A run with several cameras: each chosen as a user would, and what it shows.
+      const choice = document.getElementById('camera-choice');
+      out.cameras = Array.from(choice.options).map((o) => [o.value, o.textContent]);
+      for (const option of Array.from(choice.options)) {
+        if (!option.value.startsWith('shot') || cameraList().length < 2) continue;
+        choice.value = option.value;
+        choice.dispatchEvent(new Event('change'));
+        out.shown.push({ style: option.value, cloth_pixels: viewer.countPixels(camera, false), position: camera.position.toArray() });
+      }
     } catch (e) {
       window.vdclothErrors.push('self-test: ' + e);
     }
