@@ -15,6 +15,7 @@
 #include "io/obj.hpp"
 #include "io/ply.hpp"
 #include "io/text_tokens.hpp"
+#include "output/camera_export.hpp"
 
 namespace vdc {
 
@@ -166,18 +167,7 @@ std::string base64(const std::string& bytes) {
 // with several, in the scene's order (their "index").
 json read_cameras(const std::string& run_dir) {
   json cameras = json::array();
-  if (is_file(run_dir + "/camera.json")) {
-    cameras.push_back(JsonValue::load_file(run_dir + "/camera.json").raw());
-    return cameras;
-  }
-  std::vector<std::string> named;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(run_dir, ec)) {
-    const std::string file = e.path().filename().string();
-    if (file.rfind("camera_", 0) == 0 && e.path().extension() == ".json") named.push_back(e.path().string());
-  }
-  std::sort(named.begin(), named.end());
-  for (const std::string& path : named) cameras.push_back(JsonValue::load_file(path).raw());
+  for (const std::string& path : camera_files_in(run_dir, ".json")) cameras.push_back(JsonValue::load_file(path).raw());
   std::stable_sort(cameras.begin(), cameras.end(), [](const json& a, const json& b) { return a.value("index", 0) < b.value("index", 0); });
   return cameras;
 }

@@ -121,16 +121,22 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
   if (!chan.close()) throw OutputError(chan_path, "cannot write");
 }
 
+std::vector<std::string> camera_files_in(const std::string& dir, const std::string& extension) {
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string file = e.path().filename().string();
+    if ((file == "camera" + extension || file.rfind("camera_", 0) == 0) && e.path().extension() == extension) files.push_back(e.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 void remove_camera_files(const std::string& dir) {
   std::error_code ec;
-  std::vector<std::string> files;
-  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
-    const std::string file = e.path().filename().string(), extension = e.path().extension().string();
-    if ((file == "camera.json" || file == "camera.chan" || file.rfind("camera_", 0) == 0) && (extension == ".json" || extension == ".chan"))
-      files.push_back(e.path().string());
-  }
-  for (const std::string& file : files)
-    if (std::filesystem::remove(file, ec); ec) throw OutputError(file, "cannot remove this file of an earlier run");
+  for (const char* extension : {".json", ".chan"})
+    for (const std::string& file : camera_files_in(dir, extension))
+      if (std::filesystem::remove(file, ec); ec) throw OutputError(file, "cannot remove this file of an earlier run");
 }
 
 }  // namespace vdc

@@ -34,6 +34,9 @@ std::string camera_file(const std::string& dir, const std::string& name, const s
 // that cannot be written.
 void write_camera_files(const CameraPath& path, double frame_time, int frames, const std::string& dir, const std::string& name = "",
                         int index = 0);
+// The camera files of a run directory with `extension` (".json" or ".chan"): camera.json, or
+// camera_NAME.json for each named camera, in the order of their names.
+std::vector<std::string> camera_files_in(const std::string& dir, const std::string& extension);
 // Removes the camera files of an earlier run (camera.json, camera.chan, camera_*.json,
 // camera_*.chan) if they are there.
 void remove_camera_files(const std::string& dir);

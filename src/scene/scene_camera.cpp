@@ -99,8 +99,8 @@ std::vector<ShotCamera> parse_cameras(const JsonValue& top) {
     check_name(c.at("name"), name, names);
     const std::size_t first = cameras.size();
     add_camera(c, name, cameras);
-    for (std::size_t k = first; k < cameras.size(); ++k)
-      if (k > first || cameras[k].name != name) check_name(c.at("name"), cameras[k].name, names);
+    for (std::size_t k = first; k < cameras.size(); ++k)  // a stereo camera's eyes are names too
+      if (cameras[k].name != name) check_name(c.at("name"), cameras[k].name, names);
   }
   return cameras;
 }

@@ -214,7 +214,7 @@ const vdcloth = (() => {
   // The run's cameras (camera.json, or each camera_NAME.json of a scene with several).
   function cameraList() {
     for (const run of runs) {
-      const list = (run.cameras || (run.camera ? [run.camera] : [])).filter((c) => c && c.frames && c.frames.length);
+      const list = run.cameras.filter((c) => c.frames && c.frames.length);
       if (list.length) return list;
     }
     return [];
