@@ -15,7 +15,8 @@ packages=(
   openmpi-bin libopenmpi-dev  # `mpirun -np N vdcloth run`: a run across processes and machines
   libgtest-dev libgmock-dev googletest
   libbenchmark-dev       # bench/
-  assimp-testmodels      # CMU motion capture BVH files for the importer's tests
+  libassimp-dev          # characters and cameras from glTF, FBX, Collada and X files
+  assimp-testmodels      # CMU motion capture BVH files and rigged characters for the importers' tests
   ffmpeg                 # `vdcloth render --video`: the frames as an H.264 MP4
   libjs-three            # `vdcloth report`: its 3D viewer (three.js)
   libjs-chart.js         # `vdcloth report`: its plots (Chart.js)

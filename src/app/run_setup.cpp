@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -97,6 +98,12 @@ void build_groups(const RunArgs& args, Scene scene, const Cluster& cluster, std:
 
 void set_up_run(const RunArgs& args, const Cluster& cluster, const Simulation::Log& log, RunSetup& setup) {
   Scene scene = read_scene(args);
+  if (cluster.root()) {  // what reading an artist's files repaired, once (a crowd's copies share it)
+    std::set<std::string> said;
+    for (const ObstacleSpec& o : scene.obstacles)
+      for (const std::string& note : o.notes)
+        if (said.insert(note).second) log(note);
+  }
   take_settings(args, scene, cluster.size(), setup);
   find_resume_point(args, setup);
   if (setup.nothing_to_do) return;

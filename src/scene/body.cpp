@@ -214,6 +214,24 @@ Body::Body(const Motion& motion, const BodyParams& params, MeshSource* skin, Bod
   }
 }
 
+Body::Body(const Motion& motion, Skin skin) : motion_(motion), rest_(std::move(skin.mesh)) {
+  with_canonical_uvs(rest_);
+  const std::vector<Eigen::Isometry3d> rest = motion.world(rest_pose(motion.skeleton));
+  influences_.resize(rest_.positions.size());
+  for (std::size_t v = 0; v < rest_.positions.size(); ++v) {
+    Vec3 x = Vec3::Zero();
+    for (const SkinWeight& w : skin.weights[v]) {
+      const Vec3 rest_world = rest[static_cast<std::size_t>(w.joint)] * w.local;
+      influences_[v].push_back(Influence{w.joint, w.weight, w.local, rest_world});
+      x += w.weight * rest_world;
+    }
+    rest_.positions[v] = x;
+    main_joints_.push_back(std::max_element(influences_[v].begin(), influences_[v].end(), [](const Influence& a, const Influence& b) {
+                             return a.weight < b.weight;
+                           })->joint);
+  }
+}
+
 std::vector<Vec3> Body::skin(const Pose& pose) const {
   const std::vector<Eigen::Isometry3d> world = motion_.world(pose);
   std::vector<Vec3> out(rest_.positions.size());

@@ -11,6 +11,21 @@
 
 namespace vdc {
 
+// One joint's pull on a skin vertex: linear blend skinning moves the vertex to
+// sum(weight * world(joint) * local) (the weights of a vertex summing to 1).
+struct SkinWeight {
+  int joint = 0;
+  double weight = 0;
+  Vec3 local = Vec3::Zero();  // the vertex in the joint's rest frame
+};
+
+// A character's own skin: a mesh of the figure in the skeleton's rest pose, with the weights it
+// was rigged with (per position), or none for automatic weights.
+struct Skin {
+  MeshSource mesh;
+  std::vector<std::vector<SkinWeight>> weights;
+};
+
 struct BodyParams {
   double build = 1.0;        // scales every limb's thickness
   double resolution = 0.025; // m: grid spacing of the polygonization
@@ -52,6 +67,9 @@ class Body {
   // A given skin (a mesh of the figure in the skeleton's rest pose, same units) skinned to the
   // skeleton with the same automatic weights; params.build and params.blend shape the weights.
   Body(const Motion& motion, const BodyParams& params, MeshSource skin);
+  // A given skin with its own weights (Skin::weights not empty): its rest positions are the
+  // blend of its weights at the rest pose.
+  Body(const Motion& motion, Skin skin);
   const MeshSource& rest_mesh() const { return rest_; }
   // Vertex positions for a pose; at the rest pose, exactly the rest mesh.
   std::vector<Vec3> skin(const Pose& pose) const;
@@ -61,7 +79,7 @@ class Body {
   static Pose rest_pose(const Skeleton& s);
 
  private:
-  struct Influence {
+  struct Influence {  // a SkinWeight with its rest position
     int joint;        // the joint whose transform moves the vertex
     double weight;
     Vec3 local;       // the vertex in that joint's rest frame

@@ -7,9 +7,14 @@
 namespace vdc {
 
 Character::Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed,
-                     std::optional<MeshSource> skin, Dressing dressing, BodyMeshCache* bodies)
+                     std::optional<Skin> skin, Dressing dressing, BodyMeshCache* bodies)
     : motion_(std::make_unique<Motion>(std::move(motion))), placement_(placement), body_params_(body), preroll_(dressing.preroll) {
-  body_ = skin ? std::make_unique<Body>(*motion_, body, std::move(*skin)) : std::make_unique<Body>(*motion_, body, bodies);
+  if (!skin)
+    body_ = std::make_unique<Body>(*motion_, body, bodies);
+  else if (skin->weights.empty())
+    body_ = std::make_unique<Body>(*motion_, body, std::move(skin->mesh));
+  else
+    body_ = std::make_unique<Body>(*motion_, std::move(*skin));
   clip_ = MotionClip{motion_.get(), start, speed};
   dressing_ = dressing.pose ? *dressing.pose : Body::rest_pose(motion_->skeleton);
   Aabb box;

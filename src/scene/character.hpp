@@ -23,10 +23,10 @@ struct Dressing {
 class Character {
  public:
   // With `skin`, that mesh (in the skeleton's rest pose and units) is the body instead of the
-  // procedural one.
+  // procedural one, with its own weights or automatic ones.
   // `bodies`: procedural bodies polygonized before (see BodyMeshCache).
   Character(Motion motion, const BodyParams& body, const Transform& placement, double start, double speed,
-            std::optional<MeshSource> skin = std::nullopt, Dressing dressing = {}, BodyMeshCache* bodies = nullptr);
+            std::optional<Skin> skin = std::nullopt, Dressing dressing = {}, BodyMeshCache* bodies = nullptr);
   const MeshSource& rest_mesh() const { return body_->rest_mesh(); }  // unplaced, rest pose
   // Placed, skinned vertex positions at scene time t (by mesh node index).
   std::vector<Vec3> positions_at(double t) const;

@@ -48,6 +48,7 @@ struct ObstacleSpec {
   double sequence_frame_time = 0;
   // An animated character (placed by its own transform): replaces `rest` likewise.
   std::shared_ptr<const Character> character;
+  std::vector<std::string> notes;  // what reading its files found and repaired, for the run's log
   bool moves() const { return !translate.empty() || !rotate.empty() || sequence.size() > 1 || character; }
   std::vector<Vec3> positions_at(double t) const;
   // A ball that holds the obstacle at time t, found without placing its vertices: a character

@@ -59,9 +59,11 @@ void fit_worn_garments(const std::vector<JsonValue>& entries, std::vector<Garmen
 // An `obstacles[i]` entry; `shot` is the scene's length (s): a character's build looks at the
 // poses it takes in the shot.
 ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, double frame_time, double shot, BodyMeshCache& bodies);
-// An obstacle's `character` block, placed by the obstacle's `transform` (if any).
+// An obstacle's `character` block, placed by the obstacle's `transform` (if any); what reading
+// its files found and repaired added to `notes`.
 std::shared_ptr<const Character> parse_character(const JsonValue& c, const std::optional<JsonValue>& transform,
-                                                 const std::string& scene_path, double shot, BodyMeshCache& bodies);
+                                                 const std::string& scene_path, double shot, BodyMeshCache& bodies,
+                                                 std::vector<std::string>& notes);
 
 // The `camera` block or the `cameras` list of the top level `top` (none: no camera).
 std::vector<ShotCamera> parse_cameras(const JsonValue& top);

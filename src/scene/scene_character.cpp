@@ -1,6 +1,7 @@
 // An obstacle's `character` block (docs/scene-format.md, "obstacles[i]"): a BVH motion, in
-// metres once scaled, driving the procedural body or the character's own skin, with the shot's
-// first frame, the dressing pose and the pre-roll into the shot.
+// metres once scaled, driving the procedural body or the character's own skin, or a rigged
+// character's file with its skin, weights and clip; with the shot's first frame, the dressing
+// pose and the pre-roll into the shot.
 #include "scene/scene_blocks.hpp"
 
 #include <iomanip>
@@ -13,6 +14,7 @@
 #include "scene/bvh_motion.hpp"
 #include "scene/dressing.hpp"
 #include "scene/joint_names.hpp"
+#include "scene/rigged_model.hpp"
 #include "scene/scene_values.hpp"
 
 namespace vdc {
@@ -47,46 +49,77 @@ Vec3 recentering(const Motion& motion, int frame) {
   return Vec3(root.x(), 0.0, root.z());
 }
 
-// The motion file read, its joints renamed and mirrored as the block asks.
-Motion read_motion(const JsonValue& c, const std::string& scene_path) {
-  const JsonValue file = c.at("motion");
-  const std::string path = resolve_file(file, scene_path);
-  Motion motion = with_key(file, [&] { return read_bvh(path); });
-  if (motion.frames.empty()) file.fail("the motion has no frames");
-  if (auto names = c.find("joint_names")) {
-    std::map<std::string, std::string> renames;
-    for (const auto& [from, to] : names->members()) {
-      const std::string name = to.string();
-      if (name.empty()) to.fail("a joint's new name must not be empty");
-      renames[from] = name;
-    }
-    try {
-      rename_joints(motion.skeleton, renames);
-    } catch (const std::invalid_argument& e) {
-      names->fail(std::string("the motion has no joint '") + e.what() + "' to rename");
+// The joints renamed as the block's `joint_names` asks.
+void rename_as_asked(const JsonValue& c, Motion& motion) {
+  const auto names = c.find("joint_names");
+  if (!names) return;
+  std::map<std::string, std::string> renames;
+  for (const auto& [from, to] : names->members()) {
+    const std::string name = to.string();
+    if (name.empty()) to.fail("a joint's new name must not be empty");
+    renames[from] = name;
+  }
+  try {
+    rename_joints(motion.skeleton, renames);
+  } catch (const std::invalid_argument& e) {
+    names->fail(std::string("the motion has no joint '") + e.what() + "' to rename");
+  }
+}
+
+// A skin's mirror image across x = 0, as `mirrored` makes its motion's: positions and the
+// weights' joint-local positions reflected (the joints keep their indices), faces turned over.
+void mirror_skin(Skin& skin) {
+  const Vec3 reflect(-1, 1, 1);
+  for (Vec3& x : skin.mesh.positions) x = x.cwiseProduct(reflect);
+  for (auto& face : skin.mesh.faces) std::swap(face[1], face[2]);
+  for (auto& pulls : skin.weights)
+    for (SkinWeight& w : pulls) w.local = w.local.cwiseProduct(reflect);
+}
+
+// The character's motion and, when it brings one, its skin (in the motion's units): a BVH
+// `motion` with an optional OBJ `skin`, or a rigged `file` with its own skin and weights; the
+// joints renamed and mirrored as the block asks; what reading it found added to `notes`.
+std::pair<Motion, std::optional<Skin>> read_figure(const JsonValue& c, const std::string& scene_path, std::vector<std::string>& notes) {
+  std::pair<Motion, std::optional<Skin>> out;
+  auto& [motion, skin] = out;
+  if (auto rigged = c.find("file")) {
+    const std::string path = resolve_file(*rigged, scene_path);
+    ClipChoice clip;
+    if (auto k = c.find("clip")) clip = k->is_string() ? ClipChoice(k->string()) : ClipChoice(k->integer());
+    RiggedModel model = with_key(c.has("clip") ? c.at("clip") : *rigged, [&] { return read_rigged_model(path, clip); });
+    motion = std::move(model.motion);
+    notes.insert(notes.end(), model.notes.begin(), model.notes.end());
+    skin = Skin{std::move(model.skin), std::move(model.weights)};
+  } else {
+    const JsonValue file = c.at("motion");
+    const std::string path = resolve_file(file, scene_path);
+    motion = with_key(file, [&] { return read_bvh(path); });
+    if (motion.frames.empty()) file.fail("the motion has no frames");
+    if (auto s = c.find("skin")) {
+      const std::string skin_path = resolve_file(*s, scene_path);
+      skin = with_key(*s, [&] {
+        read_obj(skin_path, false);  // checked as any obstacle mesh: manifold, consistently oriented
+        return Skin{read_obj_source(skin_path, false), {}};
+      });
     }
   }
+  rename_as_asked(c, motion);
   if (c.boolean_or("mirror", false)) {
     try {
       motion = mirrored(motion);
     } catch (const std::invalid_argument& e) {
       c.at("mirror").fail(std::string("cannot mirror the motion: ") + e.what());
     }
+    if (skin && !skin->weights.empty()) mirror_skin(*skin);
   }
-  return motion;
+  return out;
 }
 
-// The character's own `skin`, in the motion's units times `scale`.
-std::optional<MeshSource> read_skin(const JsonValue& c, const std::string& scene_path, double scale) {
-  const auto s = c.find("skin");
-  if (!s) return std::nullopt;
-  const std::string skin_path = resolve_file(*s, scene_path);
-  MeshSource skin = with_key(*s, [&] {
-    read_obj(skin_path, false);  // checked as any obstacle mesh: manifold, consistently oriented
-    return read_obj_source(skin_path, false);
-  });
-  for (Vec3& x : skin.positions) x *= scale;
-  return skin;
+// A skin scaled with its motion's lengths.
+void scale_skin(Skin& skin, double scale) {
+  for (Vec3& x : skin.mesh.positions) x *= scale;
+  for (auto& pulls : skin.weights)
+    for (SkinWeight& w : pulls) w.local *= scale;
 }
 
 // The shot starts at `first_frame`, by default after the capture's leading reference frames
@@ -124,28 +157,35 @@ double body_build(const JsonValue& c, const Motion& motion, const Pose& dressing
 }  // namespace
 
 std::shared_ptr<const Character> parse_character(const JsonValue& c, const std::optional<JsonValue>& transform,
-                                                 const std::string& scene_path, double shot, BodyMeshCache& bodies) {
-  c.only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter", "joint_names", "first_frame", "preroll",
-               "mirror"});
-  Motion motion = read_motion(c, scene_path);
+                                                 const std::string& scene_path, double shot, BodyMeshCache& bodies,
+                                                 std::vector<std::string>& notes) {
+  if (c.has("file") && c.has("motion")) c.fail("a character has one of \"motion\" (a BVH file) and \"file\" (a rigged character), not both");
+  if (c.has("file")) {
+    c.only_keys({"file", "clip", "scale", "start", "speed", "recenter", "joint_names", "first_frame", "preroll", "mirror"});
+  } else {
+    c.only_keys({"motion", "skin", "scale", "build", "resolution", "start", "speed", "recenter", "joint_names", "first_frame", "preroll",
+                 "mirror"});
+  }
+  auto [motion, skin] = read_figure(c, scene_path, notes);
   const double scale = c.positive_or("scale", 1.0);
   scale_lengths(motion, scale);
-  check_figure_size(motion, scale, c.has("scale") ? c.at("scale") : c.at("motion"));
-  std::optional<MeshSource> skin = read_skin(c, scene_path, scale);
+  check_figure_size(motion, scale, c.has("scale") ? c.at("scale") : c.has("file") ? c.at("file") : c.at("motion"));
+  if (skin) scale_skin(*skin, scale);
   const int reference = leading_reference_frames(motion);
   const int first = first_frame(c, motion, reference);
   if (c.boolean_or("recenter", true)) {
     const Vec3 shift = recentering(motion, first);
     motion.skeleton.joints.front().offset -= shift;
     if (skin)
-      for (Vec3& x : skin->positions) x -= shift;
+      for (Vec3& x : skin->mesh.positions) x -= shift;
   }
   Dressing dressing = dress_and_trim(c, motion, reference, first);
   BodyParams body;
   body.resolution = c.positive_or("resolution", body.resolution);
   if (body.resolution < 0.005) c.at("resolution").fail("must be at least 0.005 m");
   const double start = c.number_or("start", 0.0), speed = c.positive_or("speed", 1.0);
-  body.build = body_build(c, motion, *dressing.pose, start, speed, shot);
+  // A skin of its own is skinned by its weights, not by the build's.
+  if (!skin || skin->weights.empty()) body.build = body_build(c, motion, *dressing.pose, start, speed, shot);
   const Transform placement = transform ? parse_transform(*transform) : Transform{};
   return std::make_shared<const Character>(std::move(motion), body, placement, start, speed, std::move(skin), std::move(dressing), &bodies);
 }

@@ -18,8 +18,12 @@ namespace fs = std::filesystem;
 // The character places itself (its transform applies to the skinned body every frame).
 void read_character(const JsonValue& j, const JsonValue& c, const std::string& scene_path, double shot, BodyMeshCache& bodies,
                     ObstacleSpec& o) {
-  o.character = parse_character(c, j.find("transform"), scene_path, shot, bodies);
-  o.mesh = build_mesh(o.character->rest_mesh());
+  o.character = parse_character(c, j.find("transform"), scene_path, shot, bodies, o.notes);
+  try {
+    o.mesh = build_mesh(o.character->rest_mesh());
+  } catch (const MeshBuildError& e) {
+    c.fail(std::string("its skin cannot be a collision surface: ") + e.what());
+  }
   const std::vector<Vec3> x0 = o.character->positions_at(0.0);
   for (NodeId n : o.mesh.nodes()) o.mesh.x(n) = x0[static_cast<std::size_t>(n.idx)];
 }
