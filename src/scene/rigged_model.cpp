@@ -179,12 +179,24 @@ std::vector<double> sample_ticks(const aiAnimation& clip, double ticks_per_secon
   return out;
 }
 
-// The joints: nodes that a bone or a mesh hangs from (with their ancestors), and the nodes
-// below a bone that carry nothing (a chain's end, e.g. a head's top).
+// The joints: nodes that a bone or a mesh hangs from, with their ancestors up to the one they
+// all share (the nodes above it only place the figure), and the nodes below a bone that carry
+// nothing (a chain's end, e.g. a head's top).
 std::vector<char> joint_nodes(const NodeTable& t, const std::set<int>& anchors) {
   std::vector<char> joint(t.nodes.size(), 0);
+  std::vector<int> under(t.nodes.size(), 0);  // anchors at or below each node
   for (int a : anchors)
-    for (int n = a; n >= 0 && !joint[static_cast<std::size_t>(n)]; n = t.parent[static_cast<std::size_t>(n)]) joint[static_cast<std::size_t>(n)] = 1;
+    for (int n = a; n >= 0; n = t.parent[static_cast<std::size_t>(n)]) ++under[static_cast<std::size_t>(n)];
+  const auto all = static_cast<int>(anchors.size());
+  // The shared ancestor: the deepest node that holds every anchor.
+  int top = 0;
+  for (std::size_t n = 0; n < t.nodes.size(); ++n)
+    if (under[n] == all) top = static_cast<int>(n);  // depth-first order: a holder's holders come before it
+  for (int a : anchors)
+    for (int n = a; n >= 0 && !joint[static_cast<std::size_t>(n)]; n = t.parent[static_cast<std::size_t>(n)]) {
+      joint[static_cast<std::size_t>(n)] = 1;
+      if (n == top) break;
+    }
   std::vector<char> below_anchor(t.nodes.size(), 0);
   for (std::size_t i = 0; i < t.nodes.size(); ++i) {
     const int p = t.parent[i];

@@ -28,16 +28,21 @@ constexpr double kStillDistance = 0.01, kDefaultPreroll = 1.0, kLongestPreroll =
 // A character's skeleton must be of a person's size once scaled: a capture in other units (CMU's
 // captures in inches, others in centimetres) would otherwise make a figure metres or millimetres
 // tall, and the garments around it meaningless. The size is the largest extent of its joints in
-// the rest pose; `place` is what the error names (the scale, or the motion without one).
-void check_figure_size(const Motion& motion, double scale, const JsonValue& place) {
+// the rest pose, and of a rigged skin (whose joints may be few); `place` is what the error names
+// (the scale, or the motion without one).
+void check_figure_size(const Motion& motion, const std::optional<Skin>& skin, double scale, const JsonValue& place) {
   constexpr double kShortest = 0.5, kTallest = 3.0, kTypical = 1.7;  // m
   Aabb box;
-  for (const auto& joint : motion.world(Body::rest_pose(motion.skeleton))) box.grow(Vec3(joint.translation()));
+  const auto rest = motion.world(Body::rest_pose(motion.skeleton));
+  for (const auto& joint : rest) box.grow(Vec3(joint.translation()));
+  if (skin)
+    for (const auto& pulls : skin->weights)
+      for (const SkinWeight& w : pulls) box.grow(rest[static_cast<std::size_t>(w.joint)] * w.local);
   const double size = (box.hi - box.lo).maxCoeff();
   if (size >= kShortest && size <= kTallest) return;
   std::ostringstream problem;
-  problem << "the figure is " << std::setprecision(3) << size << " m tall with scale " << scale
-          << " (its skeleton's extent in the rest pose), not 0.5 to 3 m";
+  problem << "the figure is " << std::setprecision(3) << size << " m tall with scale " << scale << " (its " << (skin ? "skin's" : "skeleton's")
+          << " extent in the rest pose), not 0.5 to 3 m";
   if (size > 0) problem << ": scale " << std::setprecision(3) << scale * kTypical / size << " would make it 1.7 m";
   place.fail(problem.str());
 }
@@ -169,8 +174,9 @@ std::shared_ptr<const Character> parse_character(const JsonValue& c, const std::
   auto [motion, skin] = read_figure(c, scene_path, notes);
   const double scale = c.positive_or("scale", 1.0);
   scale_lengths(motion, scale);
-  check_figure_size(motion, scale, c.has("scale") ? c.at("scale") : c.has("file") ? c.at("file") : c.at("motion"));
   if (skin) scale_skin(*skin, scale);
+  const std::optional<Skin> rigged = skin && !skin->weights.empty() ? skin : std::nullopt;
+  check_figure_size(motion, rigged, scale, c.has("scale") ? c.at("scale") : c.has("file") ? c.at("file") : c.at("motion"));
   const int reference = leading_reference_frames(motion);
   const int first = first_frame(c, motion, reference);
   if (c.boolean_or("recenter", true)) {
