@@ -7,10 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -76,12 +80,17 @@ struct NodeTable {
   std::vector<const aiNode*> nodes;
   std::vector<int> parent;
   std::map<std::string, int> by_name;  // the first node of each name
-  void add(const aiNode* n, int p) {
-    const int i = static_cast<int>(nodes.size());
-    nodes.push_back(n);
-    parent.push_back(p);
-    by_name.emplace(n->mName.C_Str(), i);
-    for (unsigned c = 0; c < n->mNumChildren; ++c) add(n->mChildren[c], i);
+  explicit NodeTable(const aiNode* root) {  // without recursion: a hierarchy may be deep
+    std::vector<std::pair<const aiNode*, int>> stack{{root, -1}};
+    while (!stack.empty()) {
+      const auto [n, p] = stack.back();
+      stack.pop_back();
+      const int i = static_cast<int>(nodes.size());
+      nodes.push_back(n);
+      parent.push_back(p);
+      by_name.emplace(n->mName.C_Str(), i);
+      for (unsigned c = n->mNumChildren; c-- > 0;) stack.push_back({n->mChildren[c], i});
+    }
   }
 };
 
@@ -226,16 +235,62 @@ RiggedModel repaired(RiggedModel model, const std::string& path) {
 
 }  // namespace
 
+// Only the importers of the formats rigged characters come in: a file another would take by its
+// content (a BVH, an OBJ, a scan) is refused rather than guessed at.
+void keep_character_formats(Assimp::Importer& importer) {
+  const std::set<std::string> kept{"Direct3D XFile Importer", "Valve SMD Importer", "Collada Importer", "Autodesk FBX Importer",
+                                   "glTF Importer", "glTF2 Importer"};
+  std::vector<Assimp::BaseImporter*> others;
+  for (std::size_t i = 0; i < importer.GetImporterCount(); ++i)
+    if (!kept.count(importer.GetImporterInfo(i)->mName)) others.push_back(importer.GetImporter(i));
+  for (Assimp::BaseImporter* other : others) {
+    importer.UnregisterLoader(other);
+    delete other;  // the importer deletes only the loaders it still holds
+  }
+}
+
+// The file's bytes if it is text (no NUL byte), else nothing: a binary file's nesting is its
+// records', not its bytes'.
+std::string text_of(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return bytes.find('\0') == std::string::npos ? bytes : std::string();
+}
+
+// How deep a text's brackets ({ [ of JSON and X files, outside strings) and XML elements nest:
+// the importers parse nesting by recursion, and a hostile file nested a million deep would end
+// the program on its stack instead of in an error.
+int deepest_nesting(const std::string& text) {
+  int depth = 0, deepest = 0;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '\\') ++i;
+      else if (c == '"') quoted = false;
+      continue;
+    }
+    const char next = i + 1 < text.size() ? text[i + 1] : '\0';
+    if (c == '"') quoted = true;
+    else if (c == '{' || c == '[' || (c == '<' && std::isalpha(static_cast<unsigned char>(next)))) deepest = std::max(deepest, ++depth);
+    else if (c == '}' || c == ']' || (c == '<' && next == '/') || (c == '/' && next == '>')) --depth;
+  }
+  return deepest;
+}
+
 RiggedModel read_rigged_model(const std::string& path, const ClipChoice& clip_choice) {
+  constexpr int kDeepestNesting = 1000;
+  if (const int depth = deepest_nesting(text_of(path)); depth > kDeepestNesting)
+    throw InputError(path, "", "nested " + std::to_string(depth) + " levels deep (no character file is deeper than " + std::to_string(kDeepestNesting) + ")");
   Assimp::Importer importer;
+  keep_character_formats(importer);
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
   if (!scene || !scene->mRootNode) throw InputError(path, "", std::string("cannot read the file: ") + shortened(importer.GetErrorString()));
   RiggedModel model;
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) model.clips.emplace_back(scene->mAnimations[a]->mName.C_Str());
   const aiAnimation* clip = chosen_clip(*scene, clip_choice, path);
 
-  NodeTable table;
-  table.add(scene->mRootNode, -1);
+  const NodeTable table(scene->mRootNode);
   std::vector<const aiNodeAnim*> channel(table.nodes.size(), nullptr);
   if (clip)
     for (unsigned c = 0; c < clip->mNumChannels; ++c)
