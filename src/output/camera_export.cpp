@@ -17,31 +17,13 @@ namespace vdc {
 namespace {
 
 constexpr double kDegrees = 180.0 / M_PI;
-// Camera files' coordinates to the micrometre, angles to a millionth of a degree.
-constexpr int kDecimals = 6;
+// The channel file's coordinates to a tenth of a nanometre and angles to 1e-10 degrees: read back
+// (a scene's "camera": {"chan": ...}), it gives the same view within 1e-9.
+constexpr int kDecimals = 10;
 
 nlohmann::json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
-
-Vec3 zxy_euler_degrees(const Camera& camera) {
-  const auto [right, up, forward] = camera.basis();
-  Mat3 r;  // camera to world: its columns are the camera's x, y and z (z points backwards)
-  r.col(0) = right;
-  r.col(1) = up;
-  r.col(2) = -forward;
-  // Ry(b) Rx(a) Rz(c) has row 1 (ca sc, ca cc, -sa), column 2 (sb ca, -sa, cb ca).
-  const double a = std::asin(std::clamp(-r(1, 2), -1.0, 1.0));
-  double b, c;
-  if (std::abs(r(1, 2)) < 1 - 1e-12) {
-    b = std::atan2(r(0, 2), r(2, 2));
-    c = std::atan2(r(1, 0), r(1, 1));
-  } else {  // gimbal lock: the heading takes the whole turn about y
-    b = std::atan2(-r(2, 0), r(0, 0));
-    c = 0;
-  }
-  return Vec3(a, b, c) * kDegrees;
-}
 
 std::vector<CameraFrame> camera_frames(const CameraPath& path, double frame_time, int frames) {
   std::vector<CameraFrame> out;
@@ -104,6 +86,7 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
                            {"up", vec(up)},
                            {"rotation_degrees", vec(c.rotation_degrees)}});
     if (depth_of_field) j["frames"].back()["focus_distance"] = c.camera.focus_distance;
+    if (c.camera.fov_y_degrees != lens.fov_y_degrees) j["frames"].back()["fov_y_degrees"] = c.camera.fov_y_degrees;  // a zoom
   }
   const std::string json_path = camera_file(dir, name, ".json");
   std::ofstream json_file(json_path);
@@ -116,7 +99,7 @@ void write_camera_files(const CameraPath& path, double frame_time, int frames, c
     chan.integer(c.frame);
     for (int k = 0; k < 3; ++k) chan.text(" ").fixed(c.camera.position[k], kDecimals);
     for (int k = 0; k < 3; ++k) chan.text(" ").fixed(c.rotation_degrees[k], kDecimals);
-    chan.text(" ").fixed(lens.fov_y_degrees, kDecimals).text("\n");
+    chan.text(" ").fixed(c.camera.fov_y_degrees, kDecimals).text("\n");
   }
   if (!chan.close()) throw OutputError(chan_path, "cannot write");
 }

@@ -10,11 +10,6 @@
 
 namespace vdc {
 
-// Euler angles in degrees (x, y, z) of the camera's orientation in Nuke's default rotation order
-// ZXY: camera-to-world = Ry(y) Rx(x) Rz(z), the camera looking down its -z with +y up (so x is the
-// pitch, y the heading, z the roll). Looking straight up or down, the roll is taken as 0.
-Vec3 zxy_euler_degrees(const Camera& camera);
-
 struct CameraFrame {
   int frame = 0;
   double time = 0;  // s, frame * frame_time

@@ -11,11 +11,11 @@
 // or a non-uniform or mirroring scale on the skeleton, is an error.
 #pragma once
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "core/mesh_build.hpp"
 #include "scene/body.hpp"
+#include "scene/model_file.hpp"
 #include "scene/skeleton.hpp"
 
 namespace vdc {
@@ -27,9 +27,6 @@ struct RiggedModel {
   std::vector<std::string> clips;                // every clip's name, in the file's order
   std::vector<std::string> notes;                // what was left out or repaired, for the log
 };
-
-// A clip asked for by name or by index; the first clip when none is.
-using ClipChoice = std::variant<std::monostate, std::string, long long>;
 
 // Reads the file: units to metres and the up axis to +y from what the file states (FBX's
 // UnitScaleFactor and UpAxis; Collada's are applied by the importer; glTF is metres, y up).

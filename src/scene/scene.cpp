@@ -103,7 +103,7 @@ Scene load_scene(const std::string& path) {
   fit_worn_garments(entries.garments, s.garments, making, s.obstacles, s.start_time(), s.frames * s.frame_time, bodies);
   attach_handles(entries.garments, s.garments, s.obstacles, s.start_time());
   check_obstacle_groups(s, entries);
-  s.cameras = parse_cameras(j);
+  s.cameras = parse_cameras(j, path, s.frame_time);
   if (auto v = j.find("view")) s.view = parse_view(*v);
   return s;
 }

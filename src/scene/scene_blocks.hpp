@@ -65,8 +65,9 @@ std::shared_ptr<const Character> parse_character(const JsonValue& c, const std::
                                                  const std::string& scene_path, double shot, BodyMeshCache& bodies,
                                                  std::vector<std::string>& notes);
 
-// The `camera` block or the `cameras` list of the top level `top` (none: no camera).
-std::vector<ShotCamera> parse_cameras(const JsonValue& top);
+// The `camera` block or the `cameras` list of the top level `top` (none: no camera); a channel
+// file named relative to `scene_path`, its frames `frame_time` apart.
+std::vector<ShotCamera> parse_cameras(const JsonValue& top, const std::string& scene_path, double frame_time);
 ViewParams parse_view(const JsonValue& j);
 
 // What a character's arms keep from its body by default and from what its garments' handles

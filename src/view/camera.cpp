@@ -132,12 +132,41 @@ double distance_to_frustum(const Frustum& frustum, const Vec3& a, const Vec3& b,
 }
 
 CameraPath::CameraPath(const Camera& lens, std::vector<CameraKey> keys) : lens_(lens), keys_(std::move(keys)) {
+  const bool rolls = std::any_of(keys_.begin(), keys_.end(), [](const CameraKey& k) { return k.up.has_value(); });
+  const bool zooms = std::any_of(keys_.begin(), keys_.end(), [](const CameraKey& k) { return k.fov_y_degrees.has_value(); });
   for (std::size_t i = 0; i < keys_.size(); ++i) {
-    if (i == 0 || keys_[i].cut)
-      shots_.push_back(Shot{i == 0 ? -std::numeric_limits<double>::infinity() : keys_[i].time, {}, {}});
-    shots_.back().position.keys.push_back({keys_[i].time, keys_[i].position});
-    shots_.back().target.keys.push_back({keys_[i].time, keys_[i].target});
+    const CameraKey& k = keys_[i];
+    if (i == 0 || k.cut) shots_.push_back(Shot{i == 0 ? -std::numeric_limits<double>::infinity() : k.time, {}, {}, {}, {}});
+    Shot& shot = shots_.back();
+    shot.position.keys.push_back({k.time, k.position});
+    shot.target.keys.push_back({k.time, k.target});
+    if (rolls) shot.up.keys.push_back({k.time, k.up.value_or(lens_.up)});
+    if (zooms) shot.fov.keys.push_back({k.time, Vec3(k.fov_y_degrees.value_or(lens_.fov_y_degrees), 0, 0)});
   }
+}
+
+Vec3 zxy_euler_degrees(const Camera& camera) {
+  const auto [right, up, forward] = camera.basis();
+  Mat3 r;  // camera to world: its columns are the camera's x, y and z (z points backwards)
+  r.col(0) = right;
+  r.col(1) = up;
+  r.col(2) = -forward;
+  // Ry(b) Rx(a) Rz(c) has row 1 (ca sc, ca cc, -sa), column 2 (sb ca, -sa, cb ca).
+  const double a = std::asin(std::clamp(-r(1, 2), -1.0, 1.0));
+  double b, c;
+  if (std::abs(r(1, 2)) < 1 - 1e-12) {
+    b = std::atan2(r(0, 2), r(2, 2));
+    c = std::atan2(r(1, 0), r(1, 1));
+  } else {  // gimbal lock: the heading takes the whole turn about y
+    b = std::atan2(-r(2, 0), r(0, 0));
+    c = 0;
+  }
+  return Vec3(a, b, c) * (180.0 / M_PI);
+}
+
+Mat3 zxy_rotation(const Vec3& degrees) {
+  const Vec3 a = degrees * (M_PI / 180.0);
+  return (Eigen::AngleAxisd(a.y(), Vec3::UnitY()) * Eigen::AngleAxisd(a.x(), Vec3::UnitX()) * Eigen::AngleAxisd(a.z(), Vec3::UnitZ())).toRotationMatrix();
 }
 
 bool ball_outside(const Frustum& frustum, const Vec3& centre, double radius) {
@@ -152,6 +181,8 @@ Camera CameraPath::at(double t) const {
   Camera c = lens_;
   c.position = shots_[s].position.at(t);
   c.target = shots_[s].target.at(t);
+  if (!shots_[s].up.empty()) c.up = shots_[s].up.at(t);
+  if (!shots_[s].fov.empty()) c.fov_y_degrees = shots_[s].fov.at(t).x();
   if (c.focus_on_target) c.focus_distance = (c.target - c.position).norm();
   if (c.eye_offset != 0) {
     const Vec3 side = c.eye_offset * c.basis()[0];

@@ -3,6 +3,7 @@
 // cuts, evaluated at any time, future included (anticipation needs it).
 #pragma once
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "core/math.hpp"
@@ -89,7 +90,19 @@ struct CameraKey {
   Vec3 position = Vec3(0, 0, 5);
   Vec3 target = Vec3::Zero();
   bool cut = false;
+  // The key's own up vector (the camera's roll) and vertical field of view (a zoom), as cameras
+  // from animation packages have them; none: the lens's. A path where some key has one
+  // interpolates it through every key (the lens's standing in for keys without).
+  std::optional<Vec3> up;
+  std::optional<double> fov_y_degrees;
 };
+
+// Euler angles in degrees (x, y, z) of a camera's orientation in Nuke's default rotation order
+// ZXY: camera-to-world = Ry(y) Rx(x) Rz(z), the camera looking down its -z with +y up (so x is the
+// pitch, y the heading, z the roll). Looking straight up or down, the roll is taken as 0.
+Vec3 zxy_euler_degrees(const Camera& camera);
+// The camera-to-world rotation of such angles: its columns are the camera's right, up and back.
+Mat3 zxy_rotation(const Vec3& degrees);
 
 class CameraPath {
  public:
@@ -110,7 +123,7 @@ class CameraPath {
   std::vector<CameraKey> keys_;
   struct Shot {
     double start;  // time of its first key (a cut), -infinity for the first shot
-    Vec3Track position, target;
+    Vec3Track position, target, up, fov;  // up and fov (in x) empty when no key has its own
   };
   std::vector<Shot> shots_;
 };
