@@ -22,6 +22,7 @@ packages=(
   libjs-chart.js         # `vdcloth report`: its plots (Chart.js)
   chromium-headless-shell  # the report's test opens it in a real browser
   blender                # the test of the Blender add-on (tools/blender/) runs it headless
+  python3-numpy          # Blender's glTF exporter, which the add-on's export uses
 )
 if [ "${1:-}" = "fuzz" ]; then
   packages+=(

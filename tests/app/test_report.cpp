@@ -23,6 +23,7 @@
 #include "core/error.hpp"
 #include "io/ply.hpp"
 #include "scene/scene.hpp"
+#include "support/process_output.hpp"
 
 namespace vdc {
 namespace {
@@ -41,20 +42,8 @@ const char* kScene =
     R"( "garments": [{"name": "s", "mesh": {"grid": {"size": [1, 1], "cells": [6, 6]}}, "material": "cotton.json",)"
     R"( "handles": [{"uv": [[0, 1], [1, 1]]}]}]})";
 
-// Everything a program prints, and its exit status.
-struct Output {
-  std::string text;
-  int status = -1;
-};
-Output capture(const std::string& command) {
-  Output o;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[4096];
-    for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) o.text.append(buffer, n);
-    o.status = pclose(pipe);
-  }
-  return o;
-}
+using test::capture;
+using test::Output;
 
 // Debian's headless Chromium (chromium-headless-shell), or the full browser.
 std::string browser() {

@@ -147,9 +147,10 @@ def camera_files(run_dir):
     return [path for _, _, path in sorted(named)]
 
 
-def import_camera(path, scene, collection, first):
-    """One camera, keyed at every frame: object "shot" (camera.json) or "shot_NAME"; the first
-    becomes the scene's camera and sets the render's size, speed and motion blur."""
+def import_camera(path, scene, collection, first, first_frame=0):
+    """One camera, keyed at every frame (run frame f at Blender frame first_frame + f): object
+    "shot" (camera.json) or "shot_NAME"; the first becomes the scene's camera and sets the
+    render's size, speed and motion blur."""
     with open(path) as f:
         cam = json.load(f)
     label = "shot_" + cam["name"] if "name" in cam else "shot"
@@ -172,13 +173,17 @@ def import_camera(path, scene, collection, first):
     obj.rotation_mode = "XYZ"
     for frame in cam["frames"]:
         obj.matrix_world = camera_matrix(frame)
-        obj.keyframe_insert("location", frame=frame["frame"])
-        obj.keyframe_insert("rotation_euler", frame=frame["frame"])
+        at = first_frame + frame["frame"]
+        obj.keyframe_insert("location", frame=at)
+        obj.keyframe_insert("rotation_euler", frame=at)
         if dof and "focus_distance" in frame:  # the focus pulled frame by frame
             data.dof.focus_distance = frame["focus_distance"]
-            data.keyframe_insert("dof.focus_distance", frame=frame["frame"])
+            data.keyframe_insert("dof.focus_distance", frame=at)
+        if "fov_y_degrees" in frame:  # a zoom
+            data.angle_y = math.radians(frame["fov_y_degrees"])
+            data.keyframe_insert("lens", frame=at)
         if frame["cut"]:
-            obj["cuts"] = list(obj.get("cuts", [])) + [frame["frame"]]
+            obj["cuts"] = list(obj.get("cuts", [])) + [at]
     curves = list(obj.animation_data.action.fcurves)
     if data.animation_data and data.animation_data.action:
         curves += list(data.animation_data.action.fcurves)
@@ -199,7 +204,7 @@ def show_frame(scene, *args):
         frames = obj.get("vdcloth_frames")
         if not frames:
             continue
-        current = scene.frame_current
+        current = scene.frame_current - obj.get("vdcloth_first_frame", 0)
         chosen = frames[0]
         for f in frames:
             if f <= current:
@@ -209,8 +214,9 @@ def show_frame(scene, *args):
             obj.data = mesh
 
 
-def import_run(run_dir, every=1, context=None):
-    """Loads the run into the current scene; returns the objects made."""
+def import_run(run_dir, every=1, context=None, first_frame=0):
+    """Loads the run into the current scene, its frame f at Blender frame first_frame + f (a scene
+    exported from Blender: its frame_start); returns the objects made."""
     context = context or bpy.context
     scene = context.scene
     collection = bpy.data.collections.new(os.path.basename(os.path.normpath(run_dir)) or "vdcloth")
@@ -225,12 +231,13 @@ def import_run(run_dir, every=1, context=None):
         obj = bpy.data.objects.new(label, bpy.data.meshes["%s.%04d" % (label, frames[0])])
         obj["vdcloth_name"] = label
         obj["vdcloth_frames"] = frames
+        obj["vdcloth_first_frame"] = first_frame
         collection.objects.link(obj)
         made.append(obj)
         all_frames.update(frames)
     for k, path in enumerate(camera_files(run_dir)):
-        made.append(import_camera(path, scene, collection, k == 0))
-    scene.frame_start, scene.frame_end = min(all_frames), max(all_frames)
+        made.append(import_camera(path, scene, collection, k == 0, first_frame))
+    scene.frame_start, scene.frame_end = first_frame + min(all_frames), first_frame + max(all_frames)
     if show_frame not in bpy.app.handlers.frame_change_pre:
         bpy.app.handlers.frame_change_pre.append(show_frame)
     scene.frame_set(scene.frame_start)
@@ -245,11 +252,12 @@ class ImportVdclothRun(bpy.types.Operator, ImportHelper):
     filename_ext = ""
     use_filter_folder = True
     every: bpy.props.IntProperty(name="Every Nth frame", default=1, min=1)
+    first_frame: bpy.props.IntProperty(name="First frame", default=0, description="The Blender frame of the run's frame 0")
 
     def execute(self, context):
         run_dir = self.filepath if os.path.isdir(self.filepath) else os.path.dirname(self.filepath)
         try:
-            import_run(run_dir, self.every, context)
+            import_run(run_dir, self.every, context, self.first_frame)
         except (OSError, ValueError) as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
