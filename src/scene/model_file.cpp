@@ -52,22 +52,27 @@ Eigen::Matrix4d channel_at(const aiNodeAnim& ch, double ticks) {
 }
 
 // From file units and axes to metres, y up: what FBX states in its metadata (assimp delivers
-// FBX in centimetres and leaves its axes); other formats are converted by the importer already.
+// FBX in centimetres and leaves its axes: the file's right, up and front axes, each an axis and a
+// sign, become x, y and z); other formats are converted by the importer already.
 Eigen::Matrix4d file_conversion(const aiScene& scene) {
   Eigen::Matrix4d c = Eigen::Matrix4d::Identity();
   const aiMetadata* meta = scene.mMetaData;
   aiString format;
   if (!meta || !meta->Get("SourceAsset_Format", format) || std::string(format.C_Str()).find("FBX") == std::string::npos) return c;
-  c.topLeftCorner<3, 3>() *= 0.01;
-  int up = 1, sign = 1;
-  meta->Get("UpAxis", up);
-  meta->Get("UpAxisSign", sign);
-  Mat3 r = Mat3::Identity();
-  const double q = sign < 0 ? -1.0 : 1.0;
-  if (up == 2) r = Eigen::AngleAxisd(-q * M_PI / 2, Vec3::UnitX()).toRotationMatrix();
-  if (up == 0) r = Eigen::AngleAxisd(q * M_PI / 2, Vec3::UnitZ()).toRotationMatrix();
-  if (up == 1 && sign < 0) r = Eigen::AngleAxisd(M_PI, Vec3::UnitX()).toRotationMatrix();
-  c.topLeftCorner<3, 3>() = r * c.topLeftCorner<3, 3>();
+  int axis[3] = {0, 1, 2}, sign[3] = {1, 1, 1};  // right (coord), up, front: FBX's y-up default
+  meta->Get("CoordAxis", axis[0]);
+  meta->Get("CoordAxisSign", sign[0]);
+  meta->Get("UpAxis", axis[1]);
+  meta->Get("UpAxisSign", sign[1]);
+  meta->Get("FrontAxis", axis[2]);
+  meta->Get("FrontAxisSign", sign[2]);
+  Mat3 r = Mat3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (axis[k] < 0 || axis[k] > 2) return c.topLeftCorner<3, 3>() *= 0.01, c;  // unstated: as delivered
+    r(k, axis[k]) = sign[k] < 0 ? -1.0 : 1.0;
+  }
+  if (std::abs(r.determinant()) != 1) r = Mat3::Identity();  // two roles on one axis: as delivered
+  c.topLeftCorner<3, 3>() = 0.01 * r;
   return c;
 }
 

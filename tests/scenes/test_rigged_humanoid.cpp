@@ -1,0 +1,83 @@
+// A rigged humanoid from another package: the project's figure dancing, made in Debian's Blender
+// run headless (tools/blender/make_rigged_humanoid.py) into a z-up FBX in centimetres with 3ds
+// Max Biped's joint names and Blender's own skin weights. It stands up where the figure stood,
+// is recognised as a humanoid by its shape (its Biped joints the landmarks), wears the
+// solo-dancer's dress fitted to it, and ten frames of the dance end with no crossing.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/obj.hpp"
+#include "scene/humanoid.hpp"
+#include "scene/joint_names.hpp"
+#include "scene/scene.hpp"
+#include "sim/ensemble.hpp"
+#include "support/scene_crossings.hpp"
+
+namespace vdc {
+namespace {
+
+namespace fs = std::filesystem;
+
+Aabb box_of(const std::vector<Vec3>& x) {
+  Aabb box;
+  for (const Vec3& p : x) box.grow(p);
+  return box;
+}
+
+TEST(RiggedHumanoid, ABipedFromBlenderStandsIsDressedAndDances) {
+  const fs::path dir = fs::temp_directory_path() / ("vdcloth_rigged_humanoid_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string source = VDCLOTH_SOURCE_DIR;
+  const Scene original = load_scene(source + "/scenes/solo-dancer.json");
+  const ObstacleSpec& figure = original.obstacles.at(0);
+  ASSERT_TRUE(write_obj(figure.mesh, (dir / "body.obj").string()));
+  const std::string command = "blender -b --factory-startup --python '" + source + "/tools/blender/make_rigged_humanoid.py' -- '" + source +
+                              "/motions/dance.bvh' '" + (dir / "body.obj").string() + "' '" + (dir / "hero.fbx").string() + "' 2>&1";
+  std::string said;
+  int status = -1;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[4096];
+    for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) said.append(buffer, n);
+    status = pclose(pipe);
+  }
+  ASSERT_EQ(status, 0) << said;
+  ASSERT_NE(said.find("make_rigged_humanoid: 21 bones"), std::string::npos) << said;
+
+  nlohmann::json scene = nlohmann::json::parse(std::ifstream(source + "/scenes/solo-dancer.json"));
+  scene["garments"][0]["material"] = source + "/materials/cotton.json";
+  scene["obstacles"] = nlohmann::json::array({{{"name", "dancer"}, {"character", {{"file", "hero.fbx"}}}}});
+  std::ofstream(dir / "hero.json") << scene.dump();
+  Scene hero = load_scene((dir / "hero.json").string());
+  const ObstacleSpec& imported = hero.obstacles.at(0);
+  ASSERT_TRUE(imported.character);
+  // Standing where the figure stood (z up and centimetres undone), facing the same way.
+  const Aabb was = box_of(figure.positions_at(0.0)), is = box_of(imported.positions_at(0.0));
+  EXPECT_LT((was.lo - is.lo).norm() + (was.hi - is.hi).norm(), 2e-3) << is.lo.transpose() << " / " << is.hi.transpose();
+  // Recognised by its shape; a landmark's name finds its Biped joint.
+  const Skeleton& skeleton = imported.character->motion().skeleton;
+  ASSERT_TRUE(recognise_humanoid(skeleton).humanoid) << recognise_humanoid(skeleton).why_not;
+  const std::optional<int> thigh = find_joint(skeleton, "LeftUpLeg");
+  ASSERT_TRUE(thigh);
+  EXPECT_EQ(skeleton.joints[static_cast<std::size_t>(*thigh)].name, "Bip01 L Thigh");
+
+  hero.fixed_size = 0.05;
+  Ensemble run(std::move(hero), SimOptions{SimMode::Adaptive, 1});
+  for (const auto& part : run.parts()) ASSERT_EQ(test::first_crossing(*part), "") << "at the start";
+  for (int f = 0; f < 10; ++f) {
+    const FrameStats s = run.step_frame();
+    for (const auto& part : run.parts()) ASSERT_EQ(test::first_crossing(*part), "") << "frame " << s.frame;
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace vdc
