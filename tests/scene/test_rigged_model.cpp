@@ -277,3 +277,35 @@ TEST(RiggedModel, BadFilesAreInputErrorsNamingTheProblem) {
 
 }  // namespace
 }  // namespace vdc
+
+namespace vdc {
+namespace {
+
+// A Collada file that states centimetres and z up: a 170 cm post stands 1.7 m tall along y.
+TEST(RiggedModel, AFileInCentimetresWithZUpStandsUpInMetres) {
+  const fs::path dir = temp_dir("units");
+  fs::create_directories(dir);
+  std::ofstream(dir / "post.dae") << R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="centimeter" meter="0.01"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries><geometry id="post"><mesh>
+    <source id="p"><float_array id="a" count="12">-20 -20 0 20 -20 0 0 20 0 0 0 170</float_array>
+      <technique_common><accessor source="#a" count="4" stride="3"><param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/></accessor></technique_common></source>
+    <vertices id="v"><input semantic="POSITION" source="#p"/></vertices>
+    <triangles count="4"><input semantic="VERTEX" source="#v" offset="0"/><p>0 2 1 0 1 3 1 2 3 2 0 3</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="s"><node id="post" name="post"><instance_geometry url="#post"/></node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#s"/></scene>
+</COLLADA>)";
+  const RiggedModel post = read_rigged_model((dir / "post.dae").string());
+  fs::remove_all(dir);
+  Aabb box;
+  for (const Vec3& x : post.skin.positions) box.grow(x);
+  EXPECT_LT((box.lo - Vec3(-0.2, 0, -0.2)).norm(), 1e-6) << box.lo.transpose();
+  EXPECT_LT((box.hi - Vec3(0.2, 1.7, 0.2)).norm(), 1e-6) << box.hi.transpose();
+  EXPECT_EQ(post.motion.skeleton.joints.size(), 1u);  // a mesh without bones moves with its node
+  EXPECT_EQ(post.motion.frames.size(), 1u);           // and without a clip stands still
+}
+
+}  // namespace
+}  // namespace vdc
