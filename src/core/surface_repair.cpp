@@ -133,18 +133,16 @@ std::vector<char> orient(const std::vector<Tri>& tris, const std::vector<Vec3>& 
 }  // namespace
 
 std::string SurfaceRepairs::summary() const {
-  std::vector<std::string> found;
+  std::string out;
   auto say = [&](int n, const std::string& what) {
-    if (n > 0) found.push_back(std::to_string(n) + " " + what);
+    if (n > 0) out += (out.empty() ? "" : ", ") + what + ": " + std::to_string(n);
   };
-  say(dropped_faces, "faces without area or repeated dropped");
+  say(dropped_faces, "faces without area or repeated, dropped");
   say(turned_faces, "faces turned to agree with their neighbours");
-  say(cut_edges, "edges of three faces or more cut open");
+  say(cut_edges, "edges of three faces or more, cut open");
   say(copied_vertices, "vertices copied where separate sheets touch");
   say(open_edges, "edges on an open border");
-  if (parts > 1) found.push_back(std::to_string(parts) + " loose parts");
-  std::string out;
-  for (std::size_t i = 0; i < found.size(); ++i) out += (i ? ", " : "") + found[i];
+  if (parts > 1) say(parts, "loose parts");
   return out;
 }
 
@@ -177,20 +175,29 @@ RepairedSurface repair_surface(const MeshSource& surface) {
     fans.join(3 * u.face + u.corner, 3 * v.face + (v.corner + 1) % 3);
     fans.join(3 * u.face + (u.corner + 1) % 3, 3 * v.face + v.corner);
   }
+  // The first fan of each position keeps it (the input's order kept, unused positions dropped);
+  // the others get copies after all of them, in the order faces first use them.
+  std::vector<int> first_fan(surface.positions.size(), -1);
+  for (std::size_t f = 0; f < tris.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (int& first = first_fan[static_cast<std::size_t>(tris[f][static_cast<std::size_t>(k)])]; first < 0) first = fans.find(static_cast<int>(3 * f) + k);
   std::map<int, int32_t> position_of_fan;
-  std::vector<char> position_used(surface.positions.size(), 0);
+  for (std::size_t p = 0; p < first_fan.size(); ++p)
+    if (first_fan[p] >= 0) {
+      position_of_fan[first_fan[p]] = static_cast<int32_t>(out.source.size());
+      out.source.push_back(static_cast<int32_t>(p));
+    }
   for (std::size_t f = 0; f < tris.size(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int32_t p = tris[f][static_cast<std::size_t>(k)];
       const auto [it, added] = position_of_fan.emplace(fans.find(static_cast<int>(3 * f) + k), static_cast<int32_t>(out.source.size()));
       if (added) {
-        if (position_used[static_cast<std::size_t>(p)]) ++r.copied_vertices;
-        position_used[static_cast<std::size_t>(p)] = 1;
+        ++r.copied_vertices;
         out.source.push_back(p);
-        out.mesh.positions.push_back(surface.positions[static_cast<std::size_t>(p)]);
       }
       tris[f][static_cast<std::size_t>(k)] = it->second;
     }
+  for (int32_t p : out.source) out.mesh.positions.push_back(surface.positions[static_cast<std::size_t>(p)]);
 
   // Faces two fans still join across a cut edge (both of its ends shared by other ways round)
   // stand alone.
@@ -221,6 +228,12 @@ RepairedSurface repair_surface(const MeshSource& surface) {
   }
   for (std::size_t f = 0; f < tris.size(); ++f) r.parts += pieces.find(static_cast<int>(f)) == static_cast<int>(f);
   return out;
+}
+
+ObstacleSurface build_obstacle_mesh(const MeshSource& surface) {
+  RepairedSurface r = repair_surface(surface);
+  with_canonical_uvs(r.mesh);
+  return {build_mesh(r.mesh), std::move(r.source), r.repairs};
 }
 
 }  // namespace vdc

@@ -34,4 +34,13 @@ struct RepairedSurface {
 // Throws MeshBuildError for a surface with no face left or a position that is not finite.
 RepairedSurface repair_surface(const MeshSource& surface);
 
+// An obstacle's mesh from its surface as given: repaired, with the canonical material triangles
+// an obstacle has (it has no pattern); its node i copies the surface's position source[i].
+struct ObstacleSurface {
+  Mesh mesh;
+  std::vector<int32_t> source;
+  SurfaceRepairs repairs;
+};
+ObstacleSurface build_obstacle_mesh(const MeshSource& surface);
+
 }  // namespace vdc

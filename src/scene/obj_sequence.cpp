@@ -45,11 +45,15 @@ ObjSequence load_obj_sequence(const std::vector<std::string>& files, double fram
   ObjSequence seq;
   seq.frame_time = frame_time;
   MeshSource first = read_obj_source(files.front(), false);
-  seq.mesh = read_obj(files.front(), false);
-  // The mesh keeps the positions that faces use, in file order (as build_mesh does).
-  std::vector<char> used(first.positions.size(), 0);
-  for (const auto& f : first.faces)
-    for (const Corner& c : f) used[static_cast<std::size_t>(c.node)] = 1;
+  ObstacleSurface surface = [&] {
+    try {
+      return build_obstacle_mesh(first);
+    } catch (const MeshBuildError& e) {
+      throw InputError(files.front(), "", std::string("cannot be a collision surface: ") + e.what());
+    }
+  }();
+  seq.mesh = std::move(surface.mesh);
+  seq.repairs = surface.repairs.summary();
   for (const std::string& file : files) {
     MeshSource s = file == files.front() ? first : read_obj_source(file, false);
     if (s.positions.size() != first.positions.size() || s.faces.size() != first.faces.size())
@@ -60,12 +64,12 @@ ObjSequence load_obj_sequence(const std::vector<std::string>& files, double fram
       for (std::size_t c = 0; c < 3; ++c)
         if (s.faces[f][c].node != first.faces[f][c].node)
           throw InputError(file, "face " + std::to_string(f + 1), "lists other vertices than the same face of " + files.front());
-    std::vector<Vec3> x;
-    for (std::size_t i = 0; i < used.size(); ++i)
-      if (used[i]) {
-        if (!s.positions[i].allFinite()) throw InputError(file, "", "position " + std::to_string(i + 1) + " is not finite");
-        x.push_back(s.positions[i]);
-      }
+    std::vector<Vec3> x;  // by node: each the file's position the repaired surface copies
+    for (int32_t i : surface.source) {
+      const Vec3& p = s.positions[static_cast<std::size_t>(i)];
+      if (!p.allFinite()) throw InputError(file, "", "position " + std::to_string(i + 1) + " is not finite");
+      x.push_back(p);
+    }
     seq.frames.push_back(std::move(x));
   }
   return seq;

@@ -6,11 +6,13 @@
 #include <vector>
 
 #include "core/mesh.hpp"
+#include "core/surface_repair.hpp"
 
 namespace vdc {
 
 struct ObjSequence {
-  Mesh mesh;                             // the first file's mesh (topology and first positions)
+  Mesh mesh;                             // the first file's mesh (topology and first positions), repaired for collisions
+  std::string repairs;                   // what its repair found (SurfaceRepairs::summary), "" for nothing
   std::vector<std::vector<Vec3>> frames; // positions per file, by node index
   double frame_time = 0.04;              // s between files
 };

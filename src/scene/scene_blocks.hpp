@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/surface_repair.hpp"
 #include "io/json_reader.hpp"
 #include "scene/body.hpp"
 #include "scene/fitting.hpp"
@@ -31,8 +32,12 @@ RemeshingBlock parse_remeshing(const JsonValue& j);
 CollisionParams parse_collision(const JsonValue& j);
 
 // A `mesh`: an OBJ file, a grid, or (garments only) a dress or tube pattern, or (obstacles only)
-// a sphere. With `pattern`, a procedural garment's sizes are kept there.
-Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment, std::optional<GarmentPattern>* pattern = nullptr);
+// a sphere. With `pattern`, a procedural garment's sizes are kept there. An obstacle's OBJ is
+// repaired for collisions (core/surface_repair.hpp), what was found added to `notes`.
+Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment, std::optional<GarmentPattern>* pattern = nullptr,
+                std::vector<std::string>* notes = nullptr);
+// An obstacle's surface built as a mesh, repaired; a note naming `file` if it needed repairs.
+ObstacleSurface obstacle_surface(const MeshSource& surface, const std::string& file, std::vector<std::string>* notes);
 
 // What making a garment again for the figure wearing it needs (fit_worn_garments).
 struct GarmentMaking {

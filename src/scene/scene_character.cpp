@@ -14,6 +14,7 @@
 #include "scene/bvh_motion.hpp"
 #include "scene/dressing.hpp"
 #include "scene/joint_names.hpp"
+#include "core/surface_repair.hpp"
 #include "scene/rigged_model.hpp"
 #include "scene/scene_values.hpp"
 
@@ -103,8 +104,13 @@ std::pair<Motion, std::optional<Skin>> read_figure(const JsonValue& c, const std
     if (auto s = c.find("skin")) {
       const std::string skin_path = resolve_file(*s, scene_path);
       skin = with_key(*s, [&] {
-        read_obj(skin_path, false);  // checked as any obstacle mesh: manifold, consistently oriented
-        return Skin{read_obj_source(skin_path, false), {}};
+        try {  // repaired as any obstacle surface
+          RepairedSurface r = repair_surface(read_obj_source(skin_path, false));
+          if (const std::string found = r.repairs.summary(); !found.empty()) notes.push_back(skin_path + ": " + found);
+          return Skin{std::move(r.mesh), {}};
+        } catch (const MeshBuildError& e) {
+          throw InputError(skin_path, "", std::string("cannot be a collision surface: ") + e.what());
+        }
       });
     }
   }

@@ -76,10 +76,24 @@ Mesh parse_grid(const JsonValue& g) {
 
 }  // namespace
 
-Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment, std::optional<GarmentPattern>* pattern) {
+ObstacleSurface obstacle_surface(const MeshSource& surface, const std::string& file, std::vector<std::string>* notes) {
+  ObstacleSurface built = [&] {
+    try {
+      return build_obstacle_mesh(surface);
+    } catch (const MeshBuildError& e) {
+      throw InputError(file, "", std::string("cannot be a collision surface: ") + e.what());
+    }
+  }();
+  if (const std::string found = built.repairs.summary(); notes && !found.empty()) notes->push_back(file + ": " + found);
+  return built;
+}
+
+Mesh parse_mesh(const JsonValue& j, const std::string& scene_path, bool garment, std::optional<GarmentPattern>* pattern,
+                std::vector<std::string>* notes) {
   if (j.is_string()) {
     std::string file = resolve_file(j, scene_path);
-    return with_key(j, [&] { return read_obj(file, garment); });
+    if (garment) return with_key(j, [&] { return read_obj(file, true); });
+    return with_key(j, [&] { return obstacle_surface(read_obj_source(file, false), file, notes).mesh; });
   }
   j.only_keys({"grid", "sphere", "dress", "tube"});
   auto garment_only = [&](const JsonValue& d, const char* what) {

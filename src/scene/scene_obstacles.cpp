@@ -47,6 +47,7 @@ void read_sequence(const JsonValue& mesh, const JsonValue& seq, const std::strin
         throw InputError(n, "", "file not found (frame " + std::to_string(&n - names.data() + first) + " of the sequence)");
     return load_obj_sequence(names, dt);
   });
+  if (!s.repairs.empty()) o.notes.push_back(pattern + ": " + s.repairs);
   o.mesh = std::move(s.mesh);
   o.sequence = std::move(s.frames);
   o.sequence_frame_time = dt;
@@ -80,7 +81,7 @@ ObstacleSpec parse_obstacle(const JsonValue& j, const std::string& scene_path, d
   if (auto c = j.find("character")) read_character(j, *c, scene_path, shot, bodies, o);
   else if (auto seq = j.at("mesh").is_string() ? std::nullopt : j.at("mesh").find("sequence"))
     read_sequence(j.at("mesh"), *seq, scene_path, frame_time, o);
-  else o.mesh = parse_mesh(j.at("mesh"), scene_path, false);
+  else o.mesh = parse_mesh(j.at("mesh"), scene_path, false, nullptr, &o.notes);
   place(j, o);
   if (auto m = j.find("motion")) {
     m->only_keys({"translate", "rotate"});
