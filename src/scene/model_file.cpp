@@ -215,8 +215,8 @@ std::vector<double> ModelFile::sample_ticks(const aiAnimation& clip) const {
   for (double t : times) on_grid = on_grid && std::abs((t - first) / step - std::round((t - first) / step)) < 1e-6;
   constexpr double kFinestStep = 1.0 / 240, kCoarseStep = 1.0 / 60;  // s
   if (!on_grid || step < kFinestStep * tps) step = kCoarseStep * tps;
-  constexpr double kMostSamples = 200000;
-  if ((last - first) / step > kMostSamples) step = (last - first) / kMostSamples;
+  constexpr double kMostClipSamples = 200000;
+  if ((last - first) / step > kMostClipSamples) step = (last - first) / kMostClipSamples;
   std::vector<double> out;
   const auto n = static_cast<long long>(std::ceil((last - first) / step - 1e-9));
   for (long long k = 0; k <= n; ++k) out.push_back(std::min(last, first + static_cast<double>(k) * step));

@@ -72,14 +72,18 @@ void rename_as_asked(const JsonValue& c, Motion& motion) {
   }
 }
 
-// A skin's mirror image across x = 0, as `mirrored` makes its motion's: positions and the
-// weights' joint-local positions reflected (the joints keep their indices), faces turned over.
-void mirror_skin(Skin& skin) {
+// A skin's mirror image across x = 0, as `mirrored` makes its motion's (each joint taking its
+// partner's motion, reflected): positions reflected, faces turned over, and each weight moved
+// to the joint's partner with its joint-local position reflected.
+void mirror_skin(Skin& skin, const std::vector<std::size_t>& partner) {
   const Vec3 reflect(-1, 1, 1);
   for (Vec3& x : skin.mesh.positions) x = x.cwiseProduct(reflect);
   for (auto& face : skin.mesh.faces) std::swap(face[1], face[2]);
   for (auto& pulls : skin.weights)
-    for (SkinWeight& w : pulls) w.local = w.local.cwiseProduct(reflect);
+    for (SkinWeight& w : pulls) {
+      w.joint = static_cast<int>(partner[static_cast<std::size_t>(w.joint)]);
+      w.local = w.local.cwiseProduct(reflect);
+    }
 }
 
 // The character's motion and, when it brings one, its skin (in the motion's units): a BVH
@@ -117,11 +121,11 @@ std::pair<Motion, std::optional<Skin>> read_figure(const JsonValue& c, const std
   rename_as_asked(c, motion);
   if (c.boolean_or("mirror", false)) {
     try {
+      if (skin && !skin->weights.empty()) mirror_skin(*skin, mirror_image_joints(motion.skeleton));
       motion = mirrored(motion);
     } catch (const std::invalid_argument& e) {
       c.at("mirror").fail(std::string("cannot mirror the motion: ") + e.what());
     }
-    if (skin && !skin->weights.empty()) mirror_skin(*skin);
   }
   return out;
 }

@@ -115,15 +115,17 @@ std::vector<std::size_t> partners_by_name(const std::vector<Joint>& joints) {
 }  // namespace
 
 // The mirror image of a motion (a reflection of its figure, e.g. for a crowd's copies).
+std::vector<std::size_t> mirror_image_joints(const Skeleton& skeleton) {
+  const HumanoidRecognition figure = recognise_humanoid(skeleton);
+  if (!figure.humanoid) return partners_by_name(skeleton.joints);
+  std::vector<std::size_t> partner;
+  for (int p : mirror_partners(skeleton, *figure.humanoid)) partner.push_back(static_cast<std::size_t>(p));
+  return partner;
+}
+
 Motion mirrored(const Motion& motion) {
   const auto& joints = motion.skeleton.joints;
-  std::vector<std::size_t> partner;
-  const HumanoidRecognition figure = recognise_humanoid(motion.skeleton);
-  if (figure.humanoid) {
-    for (int p : mirror_partners(motion.skeleton, *figure.humanoid)) partner.push_back(static_cast<std::size_t>(p));
-  } else {
-    partner = partners_by_name(joints);
-  }
+  const std::vector<std::size_t> partner = mirror_image_joints(motion.skeleton);
   for (std::size_t j = 0; j < joints.size(); ++j)
     if (joints[partner[j]].channels != joints[j].channels || (joints[partner[j]].parent < 0) != (joints[j].parent < 0))
       throw std::invalid_argument("joint '" + joints[j].name + "' and its mirror image '" + joints[partner[j]].name + "' differ in channels");

@@ -65,6 +65,8 @@ void scale_lengths(Motion& motion, double factor);
 // skeleton's by name (Left... and Right... swapped). Throws std::invalid_argument naming a joint
 // without a partner of the same channels.
 Motion mirrored(const Motion& motion);
+// Per joint, the joint whose motion it takes in `mirrored` (itself on the middle line).
+std::vector<std::size_t> mirror_image_joints(const Skeleton& skeleton);
 
 // A motion played in a scene: scene time t shows motion time (t - start) * speed.
 struct MotionClip {

@@ -93,8 +93,8 @@ struct CameraKey {
   // The key's own up vector (the camera's roll) and vertical field of view (a zoom), as cameras
   // from animation packages have them; none: the lens's. A path where some key has one
   // interpolates it through every key (the lens's standing in for keys without).
-  std::optional<Vec3> up;
-  std::optional<double> fov_y_degrees;
+  std::optional<Vec3> up = std::nullopt;
+  std::optional<double> fov_y_degrees = std::nullopt;
 };
 
 // Euler angles in degrees (x, y, z) of a camera's orientation in Nuke's default rotation order

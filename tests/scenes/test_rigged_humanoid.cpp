@@ -1,12 +1,14 @@
 // A rigged humanoid from another package: the project's figure dancing, made in Debian's Blender
 // run headless (tools/blender/make_rigged_humanoid.py) into a z-up FBX in centimetres with 3ds
 // Max Biped's joint names and Blender's own skin weights. It stands up where the figure stood,
-// is recognised as a humanoid by its shape (its Biped joints the landmarks), wears the
-// solo-dancer's dress fitted to it, and ten frames of the dance end with no crossing.
+// is recognised as a humanoid by its shape (its Biped joints the landmarks), mirrored is its
+// mirror image at every time, wears the solo-dancer's dress fitted to it, and six frames of the
+// dance end with no crossing.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -69,10 +71,22 @@ TEST(RiggedHumanoid, ABipedFromBlenderStandsIsDressedAndDances) {
   ASSERT_TRUE(thigh);
   EXPECT_EQ(skeleton.joints[static_cast<std::size_t>(*thigh)].name, "Bip01 L Thigh");
 
+  // Mirrored, it is its mirror image at every time: each vertex reflected across x = 0.
+  scene["obstacles"][0]["character"]["mirror"] = true;
+  std::ofstream(dir / "mirrored.json") << scene.dump();
+  const Scene mirrored = load_scene((dir / "mirrored.json").string());
+  for (double t : {0.0, 1.0, 2.5}) {
+    const std::vector<Vec3> a = imported.positions_at(t), b = mirrored.obstacles.at(0).positions_at(t);
+    ASSERT_EQ(a.size(), b.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, (b[i] - Vec3(-a[i].x(), a[i].y(), a[i].z())).norm());
+    EXPECT_LT(worst, 1e-9) << "t " << t;
+  }
+
   hero.fixed_size = 0.05;
   Ensemble run(std::move(hero), SimOptions{SimMode::Adaptive, 1});
   for (const auto& part : run.parts()) ASSERT_EQ(test::first_crossing(*part), "") << "at the start";
-  for (int f = 0; f < 10; ++f) {
+  for (int f = 0; f < 6; ++f) {
     const FrameStats s = run.step_frame();
     for (const auto& part : run.parts()) ASSERT_EQ(test::first_crossing(*part), "") << "frame " << s.frame;
   }
