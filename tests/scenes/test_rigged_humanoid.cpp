@@ -9,7 +9,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -21,6 +20,7 @@
 #include "scene/joint_names.hpp"
 #include "scene/scene.hpp"
 #include "sim/ensemble.hpp"
+#include "support/process_output.hpp"
 #include "support/scene_crossings.hpp"
 
 namespace vdc {
@@ -44,15 +44,9 @@ TEST(RiggedHumanoid, ABipedFromBlenderStandsIsDressedAndDances) {
   ASSERT_TRUE(write_obj(figure.mesh, (dir / "body.obj").string()));
   const std::string command = "blender -b --factory-startup --python '" + source + "/tools/blender/make_rigged_humanoid.py' -- '" + source +
                               "/motions/dance.bvh' '" + (dir / "body.obj").string() + "' '" + (dir / "hero.fbx").string() + "' 2>&1";
-  std::string said;
-  int status = -1;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[4096];
-    for (std::size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) said.append(buffer, n);
-    status = pclose(pipe);
-  }
-  ASSERT_EQ(status, 0) << said;
-  ASSERT_NE(said.find("make_rigged_humanoid: 21 bones"), std::string::npos) << said;
+  const test::Output made = test::capture(command);
+  ASSERT_EQ(made.status, 0) << made.text;
+  ASSERT_NE(made.text.find("make_rigged_humanoid: 21 bones"), std::string::npos) << made.text;
 
   nlohmann::json scene = nlohmann::json::parse(std::ifstream(source + "/scenes/solo-dancer.json"));
   scene["garments"][0]["material"] = source + "/materials/cotton.json";
