@@ -18,7 +18,7 @@ TEST(CheckpointWriter, WritesInTurnAndReportsAFailedWriteWithItsFrame) {
   const fs::path dir = fs::temp_directory_path() / ("vdcloth-writer-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::create_directories(dir);
   const fs::path scene = dir / "sheet.json";
-  std::ofstream(scene) << R"({"frame_time": 0.04, "substeps": 2, "garments": [{"name": "s", "mesh": {"grid": {"size": [0.5, 0.5], "cells": [4, 4]}}, )"
+  std::ofstream(scene) << R"({"frame_time": 0.04, "substeps": 2, "remeshing": {"fixed_size": 0.2}, "garments": [{"name": "s", "mesh": {"grid": {"size": [0.5, 0.5], "cells": [4, 4]}}, )"
                        << R"("material": ")" << VDCLOTH_SOURCE_DIR << R"(/materials/cotton.json", "handles": [{"box": [[-1, -1, -1], [0.05, 1, 1]]}]}]})";
   Ensemble run(load_scene(scene.string()), SimOptions{SimMode::Fixed, 1});
   auto parts = [&] {
