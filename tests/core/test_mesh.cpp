@@ -16,17 +16,15 @@
 #include "core/mesh.hpp"
 #include "core/mesh_build.hpp"
 #include "support/text.hpp"
+#include "support/mesh_checks.hpp"
 
 namespace vdc {
 namespace {
 
+using test::expect_valid;
+
 // Edges of an nx by ny grid: horizontal rows, vertical columns and one diagonal per cell.
 int grid_edges(int nx, int ny) { return nx * (ny + 1) + ny * (nx + 1) + nx * ny; }
-
-void expect_valid(const Mesh& m) {
-  ValidationReport r = m.validate();
-  EXPECT_TRUE(r.ok()) << r.summary();
-}
 
 int count_boundary(const Mesh& m) {
   int n = 0;

@@ -11,19 +11,17 @@
 #include "core/mesh_build.hpp"
 #include "remesh/operations.hpp"
 #include "scene/garments.hpp"
+#include "support/mesh_checks.hpp"
 
 namespace vdc {
 namespace {
+
+using test::expect_valid;
 
 double material_area(const Mesh& m) {
   double a = 0;
   for (FaceId f : m.faces()) a += m.material_area(f);
   return a;
-}
-
-void expect_valid(const Mesh& m) {
-  ValidationReport r = m.validate();
-  ASSERT_TRUE(r.ok()) << r.summary();
 }
 
 // An interior edge of the grid (both faces present, not a seam).

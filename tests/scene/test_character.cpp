@@ -14,9 +14,12 @@
 #include "scene/scene.hpp"
 #include "support/humanoid_skeletons.hpp"
 #include "support/scene_crossings.hpp"
+#include "support/temp_file.hpp"
 
 namespace vdc {
 namespace {
+
+using test::temp_dir;
 
 namespace fs = std::filesystem;
 
@@ -223,12 +226,6 @@ double garments_apart(const Scene& a, const Scene& b) {
     for (NodeId n : x.nodes()) apart = std::max(apart, (x.x(n) - y.x(n)).norm());
   }
   return apart;
-}
-
-fs::path temp_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("vdcloth_" + name + "_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
 }
 
 // The figure is found by its shape: every motion the project ships and the captures of

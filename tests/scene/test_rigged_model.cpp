@@ -18,9 +18,12 @@
 #include "scene/rigged_model.hpp"
 #include "scene/scene.hpp"
 #include "support/text.hpp"
+#include "support/temp_file.hpp"
 
 namespace vdc {
 namespace {
+
+using test::temp_dir;
 
 namespace fs = std::filesystem;
 
@@ -95,8 +98,6 @@ std::string two_bone_gltf(const fs::path& dir, bool middle_weighs = true) {
   return path.string();
 }
 
-fs::path temp_dir(const std::string& name) { return fs::temp_directory_path() / ("vdcloth_rigged_" + name + "_" + std::to_string(::getpid())); }
-
 // A scene whose one obstacle is the character block given.
 Scene scene_with(const fs::path& dir, const std::string& character) {
   fs::create_directories(dir);
@@ -108,7 +109,7 @@ Scene scene_with(const fs::path& dir, const std::string& character) {
 }
 
 TEST(RiggedModel, ATwoBoneFileSkinsAsLinearBlendByHand) {
-  const fs::path dir = temp_dir("strip");
+  const fs::path dir = temp_dir("rigged_strip");
   const std::string file = two_bone_gltf(dir);
   const Scene s = scene_with(dir, R"({"file": ")" + file + R"(", "recenter": false, "first_frame": 0})");
   fs::remove_all(dir);
@@ -198,7 +199,7 @@ TEST(RiggedModel, TheTestModelsSkinAsTheirOwnBoneMatrices) {
   for (const Case& k : {Case{"X/Testwuson.X", "Wuson_Walk", 0.5, 1.0}, Case{"FBX/animation_with_skeleton.fbx", "", 0.025, 0.01},
                         Case{"glTF2/simple_skin/simple_skin.gltf", "", 1.0, 1.0}}) {
     SCOPED_TRACE(k.file);
-    const fs::path dir = temp_dir("models");
+    const fs::path dir = temp_dir("rigged_models");
     const std::string clip = k.clip.empty() ? "" : R"(, "clip": ")" + k.clip + "\"";
     const Scene s = scene_with(dir, R"({"file": ")" + kModels + k.file + R"(", "recenter": false, "first_frame": 0, "scale": )" +
                                         std::to_string(k.scale) + clip + "}");
@@ -254,7 +255,7 @@ TEST(RiggedModel, TheTestModelsSkinAsTheirOwnBoneMatrices) {
 }
 
 TEST(RiggedModel, BadFilesAreInputErrorsNamingTheProblem) {
-  const fs::path dir = temp_dir("bad");
+  const fs::path dir = temp_dir("rigged_bad");
   const std::string strip = two_bone_gltf(dir);
   auto error = [&](const std::string& character) {
     try {
@@ -283,7 +284,7 @@ namespace {
 
 // A Collada file that states centimetres and z up: a 170 cm post stands 1.7 m tall along y.
 TEST(RiggedModel, AFileInCentimetresWithZUpStandsUpInMetres) {
-  const fs::path dir = temp_dir("units");
+  const fs::path dir = temp_dir("rigged_units");
   fs::create_directories(dir);
   std::ofstream(dir / "post.dae") << R"(<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">

@@ -1,6 +1,8 @@
-// A file in the temp directory with a name no other test (or test process) uses; removed at the end.
+// Places in the temp directory that no other test process uses: a file removed at the end, and
+// a directory a test makes and removes itself.
 #pragma once
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -9,6 +11,13 @@
 #include <string>
 
 namespace vdc::test {
+
+// The directory vdcloth_<name>_<pid> in the temp directory, made (the test removes it).
+inline std::filesystem::path temp_dir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("vdcloth_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
 
 class TempFile {
  public:
