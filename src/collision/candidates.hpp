@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/bvh.hpp"
+#include "core/math.hpp"
 
 namespace vdc {
 
@@ -46,10 +47,35 @@ struct CandidateTrees {
   const std::vector<const Bvh*>& obstacle_edge_trees;
 };
 
+// The cloth-cloth candidates of a step's proximity search (proximity.cpp), kept for the step's
+// first round of continuous detection: found with boxes of the step's start positions, one of
+// each pair grown by `pad`, they hold every pair whose swept boxes, grown by eta each, can meet
+// when neither primitive's nodes move farther than (pad - 2 eta) / 2 in any coordinate over the
+// step (a swept box lies within its start box grown by that much). Only the primitives that move
+// farther then need the hierarchies.
+struct StartCandidates {
+  Eigen::VectorXd x;  // the start positions they were found at
+  double pad = 0;
+  std::vector<std::vector<int32_t>> node_faces;  // per cloth node: the cloth faces not around it it met
+  std::vector<std::vector<int32_t>> edge_edges;  // per cloth edge: the edges it met (each pair under one of its two)
+
+  // Empty lists for `num_nodes` nodes and `num_edges` edges, their storage kept.
+  void clear(std::size_t num_nodes, std::size_t num_edges) {
+    node_faces.resize(num_nodes);
+    edge_edges.resize(num_edges);
+    for (auto& l : node_faces) l.clear();
+    for (auto& l : edge_edges) l.clear();
+  }
+  // The largest move, in any coordinate, that keeps a primitive's pairs in the lists.
+  double slow_reach(double eta) const { return 0.5 * (pad - 2 * eta) - 1e-9; }
+};
+
 // The cloth primitives with a node that the last round of impact projection moved (Bridson et
 // al. 2002, section 7.4, iterated): only a pair with one of them can hold a new impact. A query
 // primitive with a moved node meets everything; the others meet only the moved cloth primitives
-// and no obstacle (which did not move).
+// and no obstacle (which did not move). In a first round with `StartCandidates`, "moved" means
+// moved past their reach: the others meet the moved cloth primitives, their listed ones that did
+// not move, and the obstacles.
 class MovedPrimitives {
  public:
   // `face_boxes` and `edge_boxes`: the boxes of the trees' cloth primitives in this round.
@@ -80,10 +106,11 @@ class MovedPrimitives {
 // Vertex-face candidates: for every cloth node a face uses (in parallel), cloth_face(v, f) for
 // each cloth face not around it whose box meets vertex_box(v), then obstacle_face(v, o, f) for
 // each face of each obstacle o that meets it. With `moved`, a node that did not move meets only
-// the moved cloth faces.
+// the moved cloth faces; with `listed` too (a first round), also its listed faces that did not
+// move and whose boxes meet its box, and the obstacles.
 template <class VertexBox, class ClothFace, class ObstacleFace>
-void vertex_face_candidates(const CandidateTrees& t, const MovedPrimitives* moved, int threads, VertexBox&& vertex_box,
-                            ClothFace&& cloth_face, ObstacleFace&& obstacle_face) {
+void vertex_face_candidates(const CandidateTrees& t, const MovedPrimitives* moved, const StartCandidates* listed, int threads,
+                            VertexBox&& vertex_box, ClothFace&& cloth_face, ObstacleFace&& obstacle_face) {
   const auto num_nodes = static_cast<int32_t>(t.node_used.size());
 #pragma omp parallel for schedule(dynamic, 128) num_threads(threads)
   for (int32_t v = 0; v < num_nodes; ++v) {
@@ -96,7 +123,12 @@ void vertex_face_candidates(const CandidateTrees& t, const MovedPrimitives* move
     const bool all = moved == nullptr || moved->any({v});
     if (all) t.cloth_face_tree.query(box, face);
     else moved->faces_near(box, face);
-    if (!all) continue;
+    if (!all && listed != nullptr)
+      for (const int32_t f : listed->node_faces[static_cast<std::size_t>(v)]) {
+        const auto& tri = t.cloth_faces[static_cast<std::size_t>(f)];
+        if (!moved->any({tri[0], tri[1], tri[2]}) && t.cloth_face_tree.leaf_boxes()[static_cast<std::size_t>(f)].overlaps(box)) cloth_face(v, f);
+      }
+    if (!all && listed == nullptr) continue;
     for (std::size_t o = 0; o < t.obstacle_face_trees.size(); ++o)
       t.obstacle_face_trees[o]->query(box, [&](int32_t f) { obstacle_face(v, o, f); });
   }
@@ -127,10 +159,11 @@ void obstacle_vertex_candidates(const CandidateTrees& t, const std::vector<std::
 // each cloth pair met from its earlier edge in leaf order and a cloth edge's pairs listed by the
 // one subtree that holds it. With `moved` (and boxes already padded), every cloth edge queries
 // with edge_box(e), each pair from its lower-numbered edge, and only edges with a moved node meet
-// the obstacles.
+// the obstacles; with `listed` too (a first round), an edge that did not move meets its listed
+// edges that did not move (each such pair under the edge it is listed under) and the obstacles.
 template <class EdgeBox, class ClothPair, class ObstaclePair>
-void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved, double pad, int threads, EdgeBox&& edge_box,
-                          ClothPair&& cloth_pair, ObstaclePair&& obstacle_pair) {
+void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved, const StartCandidates* listed, double pad, int threads,
+                          EdgeBox&& edge_box, ClothPair&& cloth_pair, ObstaclePair&& obstacle_pair) {
   auto cloth = [&](int32_t ea, int32_t eb) {
     const auto& a = t.cloth_edges[static_cast<std::size_t>(ea)];
     const auto& b = t.cloth_edges[static_cast<std::size_t>(eb)];
@@ -151,7 +184,12 @@ void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved,
     const bool all = moved->any({a[0], a[1]});
     if (all) t.cloth_edge_tree.query(box, later);
     else moved->edges_near(box, later);
-    if (!all) continue;
+    if (!all && listed != nullptr)
+      for (const int32_t eb : listed->edge_edges[static_cast<std::size_t>(ea)]) {
+        const auto& b = t.cloth_edges[static_cast<std::size_t>(eb)];
+        if (!moved->any({b[0], b[1]}) && t.cloth_edge_tree.leaf_boxes()[static_cast<std::size_t>(eb)].overlaps(box)) cloth_pair(ea, eb);
+      }
+    if (!all && listed == nullptr) continue;
     for (std::size_t o = 0; o < t.obstacle_edge_trees.size(); ++o)
       t.obstacle_edge_trees[o]->query(box, [&](int32_t eo) { obstacle_pair(o, ea, eo); });
   }

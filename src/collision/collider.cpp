@@ -117,11 +117,14 @@ class ImpactRound {
 
   // Finds the round's impacts: cloth vertices against cloth and obstacle faces, obstacle
   // vertices against cloth faces, cloth edges against cloth and obstacle edges.
-  void detect(const CandidateTrees& trees, const MovedPrimitives* only_moved, const std::vector<ObstacleTrees>& obstacle_trees,
-              const std::vector<Aabb>& edge_boxes, int threads) {
+  // `only_moved` and `listed` as for vertex_face_candidates: none in a first round that searches
+  // everything, both in one that takes the proximity search's candidates, `only_moved` alone in
+  // a later round. Obstacle vertices meet every cloth face in a first round.
+  void detect(const CandidateTrees& trees, const MovedPrimitives* only_moved, const StartCandidates* listed,
+              const std::vector<ObstacleTrees>& obstacle_trees, const std::vector<Aabb>& edge_boxes, int threads) {
     vertex_hits_.assign(trees.node_used.size(), Hits{});
     vertex_face_candidates(
-        trees, only_moved, threads, [&](int32_t v) { return path_box(s_, {PointRef{-1, v}}); },
+        trees, only_moved, listed, threads, [&](int32_t v) { return path_box(s_, {PointRef{-1, v}}); },
         [&](int32_t v, int32_t f) { vf({-1, v}, cloth_tri(f), {v, -1, f}, vertex_hits_[static_cast<std::size_t>(v)]); },
         [&](int32_t v, std::size_t o, int32_t f) {
           vf({-1, v}, obstacle_tri(o, f), {v, static_cast<int32_t>(o), f}, vertex_hits_[static_cast<std::size_t>(v)]);
@@ -133,13 +136,13 @@ class ImpactRound {
       obstacle_hits_[o].resize(s_.obstacle_start[o].size());
     }
     obstacle_vertex_candidates(
-        trees, obstacle_vertices, only_moved, threads, [&](std::size_t o, int32_t v) { return obstacle_trees[o].vertex_box(v); },
+        trees, obstacle_vertices, listed != nullptr ? nullptr : only_moved, threads, [&](std::size_t o, int32_t v) { return obstacle_trees[o].vertex_box(v); },
         [&](std::size_t o, int32_t v, int32_t f) {
           vf({static_cast<int32_t>(o), v}, cloth_tri(f), {v, static_cast<int32_t>(o), f}, obstacle_hits_[o][static_cast<std::size_t>(v)]);
         });
     edge_hits_.assign(s_.cloth_edges.size(), Hits{});
     edge_edge_candidates(
-        trees, only_moved, 0.0, threads, [&](int32_t e) { return edge_boxes[static_cast<std::size_t>(e)]; },
+        trees, only_moved, listed, 0.0, threads, [&](int32_t e) { return edge_boxes[static_cast<std::size_t>(e)]; },
         [&](int32_t met_by, int32_t other) { cloth_edges(met_by, other); },
         [&](std::size_t o, int32_t ea, int32_t eo) { obstacle_edges(o, ea, eo); });
   }
@@ -221,6 +224,16 @@ class ImpactRound {
   std::vector<std::vector<Hits>> obstacle_hits_;
 };
 
+// Per node: whether it moves farther than `reach` in some coordinate between x_start and x_end.
+std::vector<char> moved_past(const Eigen::VectorXd& x_start, const Eigen::VectorXd& x_end, double reach) {
+  std::vector<char> past(static_cast<std::size_t>(x_start.size() / 3), 0);
+  for (std::size_t n = 0; n < past.size(); ++n) {
+    const auto i = static_cast<Eigen::Index>(3 * n);
+    past[n] = (x_end.segment<3>(i) - x_start.segment<3>(i)).cwiseAbs().maxCoeff() > reach;
+  }
+  return past;
+}
+
 }  // namespace
 
 Collider::Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::vector<CollisionMesh> obstacles, int32_t num_nodes)
@@ -243,6 +256,7 @@ void Collider::set_cloth(const std::vector<std::array<int32_t, 3>>& cloth_faces,
   edges_of(cloth_faces_, cloth_edges_, face_edges_);
   cloth_face_tree_ = RefitBvh();
   cloth_edge_tree_ = RefitBvh();
+  start_candidates_ = StartCandidates();
 }
 
 std::vector<const Bvh*> face_trees_at(const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x,
@@ -305,10 +319,19 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     const CandidateTrees trees{cloth_faces_, cloth_edges_, cloth_node_used, cloth_face_tree_.update(face_boxes),
                                cloth_edge_tree_.update(edge_boxes), obstacle_face_bvh, obstacle_edge_bvh};
     // After the first round only pairs with a node that a projection moved can hold a new impact.
+    // In the first, the proximity search made where the step starts holds the cloth pairs of
+    // the nodes that moved little.
     std::optional<MovedPrimitives> moved_primitives;
+    const bool listed = round == 0 && start_candidates_.x.size() == x_start.size() && start_candidates_.x == x_start;
+    std::vector<char> far;  // in a listed first round: the nodes that move past the lists' reach
+    if (listed) {
+      far = moved_past(x_start, x_end, start_candidates_.slow_reach(scene.eta));
+      moved_primitives.emplace(far, trees, face_boxes, edge_boxes);
+    }
     if (round > 0) moved_primitives.emplace(moved, trees, face_boxes, edge_boxes);
     ImpactRound detection(scene, budget);
-    detection.detect(trees, moved_primitives ? &*moved_primitives : nullptr, obstacle_trees_, edge_boxes, params.threads);
+    detection.detect(trees, moved_primitives ? &*moved_primitives : nullptr, listed ? &start_candidates_ : nullptr, obstacle_trees_, edge_boxes,
+                     params.threads);
     const int64_t met = detection.met();
     stats.candidates = std::max(stats.candidates, met);
     if (met > budget) {

@@ -12,6 +12,7 @@
 
 #include "core/bvh.hpp"
 #include "core/math.hpp"
+#include "collision/candidates.hpp"
 #include "collision/obstacle_trees.hpp"
 #include "collision/proximity.hpp"
 
@@ -102,6 +103,9 @@ class Collider {
   // Hierarchies kept from step to step, refit to the boxes of each query (an obstacle's only
   // when it has moved since the last).
   RefitBvh cloth_face_tree_, cloth_edge_tree_;
+  // The last proximity search's cloth-cloth candidates, for the first detection round of a step
+  // that starts where the search was made.
+  StartCandidates start_candidates_;
   std::vector<ObstacleTrees> obstacle_trees_;
 };
 

@@ -82,8 +82,9 @@ struct ProximityScene {
 // (called in parallel, one query primitive's slots each), then taken in a fixed order.
 class ProximitySearch {
  public:
-  ProximitySearch(const ProximityScene& scene, int32_t num_nodes)
-      : s_(scene), num_obstacles_(scene.obstacles.size()), per_vertex_(2 + num_obstacles_),
+  // `kept`: where the cloth-cloth candidates met are listed for the step's continuous detection.
+  ProximitySearch(const ProximityScene& scene, int32_t num_nodes, StartCandidates& kept)
+      : s_(scene), kept_(kept), num_obstacles_(scene.obstacles.size()), per_vertex_(2 + num_obstacles_),
         vertex_pairs_(static_cast<std::size_t>(num_nodes) * per_vertex_), slot_face_(vertex_pairs_.size(), -1),
         nearest_obstacle_(static_cast<std::size_t>(num_nodes) * num_obstacles_, scene.band),
         obstacle_vertex_pairs_(num_obstacles_), nearest_cloth_(num_obstacles_), nearest_cloth_face_(num_obstacles_),
@@ -101,7 +102,11 @@ class ProximitySearch {
   // Cloth vertices: the nearest cloth face on each side, the nearest face of each obstacle.
   void cloth_vertices(const CandidateTrees& trees, int threads) {
     vertex_face_candidates(
-        trees, nullptr, threads, [&](int32_t i) { return point_box(cx(i)); }, [&](int32_t i, int32_t f) { cloth_face(i, f); },
+        trees, nullptr, nullptr, threads, [&](int32_t i) { return point_box(cx(i)); },
+        [&](int32_t i, int32_t f) {
+          kept_.node_faces[static_cast<std::size_t>(i)].push_back(f);
+          cloth_face(i, f);
+        },
         [&](int32_t i, std::size_t o, int32_t f) { obstacle_face(i, o, f); });
   }
 
@@ -116,8 +121,11 @@ class ProximitySearch {
   // Edges: pairs whose closest points are inside both edges, each cloth pair once.
   void edges(const CandidateTrees& trees, int threads) {
     edge_edge_candidates(
-        trees, nullptr, s_.band, threads, [](int32_t) { return Aabb(); },
-        [&](int32_t met_by, int32_t other) { cloth_edge_pair(met_by, other); },
+        trees, nullptr, nullptr, s_.band, threads, [](int32_t) { return Aabb(); },
+        [&](int32_t met_by, int32_t other) {
+          kept_.edge_edges[static_cast<std::size_t>(met_by)].push_back(other);
+          cloth_edge_pair(met_by, other);
+        },
         [&](std::size_t o, int32_t ea, int32_t eb) { obstacle_edge_pair(o, ea, eb); });
   }
 
@@ -290,6 +298,7 @@ class ProximitySearch {
   }
 
   const ProximityScene& s_;
+  StartCandidates& kept_;
   const std::size_t num_obstacles_, per_vertex_;
   std::vector<std::optional<ProximityPair>> vertex_pairs_;  // per cloth vertex: two cloth sides, then each obstacle
   std::vector<int32_t> slot_face_;          // the face each slot holds
@@ -327,7 +336,10 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   const CandidateTrees trees{cloth_faces_, cloth_edges_, used, face_bvh, edge_bvh, obstacle_face_bvh, obstacle_edge_bvh};
   const ProximityScene scene{cloth_faces_, cloth_edges_, obstacles_, obstacle_edges_, obstacle_adjacency_, x, v, fixed,
                              obstacle_x, obstacle_v, band};
-  ProximitySearch search(scene, num_nodes_);
+  start_candidates_.clear(static_cast<std::size_t>(num_nodes_), cloth_edges_.size());
+  start_candidates_.x = x;
+  start_candidates_.pad = band;
+  ProximitySearch search(scene, num_nodes_, start_candidates_);
   search.cloth_vertices(trees, threads);
   search.obstacle_vertices(trees, threads);
   search.edges(trees, threads);

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <mutex>
 #include <random>
 #include <set>
@@ -63,11 +64,11 @@ class CandidatesTest : public ::testing::Test {
 
   using Found = std::multiset<std::tuple<int, int, int>>;  // (obstacle or -1, query, candidate)
   // What each query of the stage finds, with `moved` (or none) and `threads`.
-  Found vertex_faces(const MovedPrimitives* moved, int threads) const {
+  Found vertex_faces(const MovedPrimitives* moved, int threads, const StartCandidates* listed = nullptr) const {
     Found found;
     std::mutex lock;
     vertex_face_candidates(
-        trees(), moved, threads, [&](int32_t v) { return box({x_[static_cast<std::size_t>(v)]}); },
+        trees(), moved, listed, threads, [&](int32_t v) { return box({x_[static_cast<std::size_t>(v)]}); },
         [&](int32_t v, int32_t f) {
           std::lock_guard<std::mutex> hold(lock);
           found.insert({-1, v, f});
@@ -89,11 +90,11 @@ class CandidatesTest : public ::testing::Test {
         });
     return found;
   }
-  Found edge_pairs(const MovedPrimitives* moved, int threads) const {
+  Found edge_pairs(const MovedPrimitives* moved, int threads, const StartCandidates* listed = nullptr) const {
     Found found;
     std::mutex lock;
     edge_edge_candidates(
-        trees(), moved, 0.0, threads, [&](int32_t e) { return edge_boxes_[static_cast<std::size_t>(e)]; },
+        trees(), moved, listed, 0.0, threads, [&](int32_t e) { return edge_boxes_[static_cast<std::size_t>(e)]; },
         [&](int32_t a, int32_t b) {
           std::lock_guard<std::mutex> hold(lock);
           found.insert({-1, std::min(a, b), std::max(a, b)});
@@ -163,6 +164,88 @@ TEST_F(CandidatesTest, EveryQueryFindsExactlyTheBoxesItMeets) {
   EXPECT_EQ(vertex_faces(&only_moved, 2), vf_moved);
   EXPECT_EQ(obstacle_vertices(&only_moved, 2), ov_moved);
   EXPECT_EQ(edge_pairs(&only_moved, 2), ee_moved);
+}
+
+// A step's first round of continuous detection from the cloth pairs its proximity search met at
+// the step's start (pad 0.05): with most nodes moving less than the lists' reach and three moving
+// far, vertex-face and edge-edge candidates are exactly those a search of the swept boxes finds.
+TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSweptBoxesFinds) {
+  const double pad = 0.05, eta = 1e-4;
+  auto boxes_of = [](const auto& items, auto&& box) {
+    std::vector<Aabb> out;
+    for (const auto& item : items) out.push_back(box(item));
+    return out;
+  };
+  auto hull = [](std::initializer_list<Vec3> points, double grow) {
+    Aabb b;
+    for (const Vec3& p : points) b.grow(p);
+    b.pad(grow);
+    return b;
+  };
+  auto bvh = [](const std::vector<Aabb>& b) { return std::make_unique<Bvh>(b); };
+  // The proximity search at the start: unpadded boxes, the query side grown by the pad.
+  const auto start_faces = boxes_of(faces_, [&](const auto& f) { return hull({x_[f[0]], x_[f[1]], x_[f[2]]}, 0); });
+  const auto start_edges = boxes_of(edges_, [&](const auto& e) { return hull({x_[e[0]], x_[e[1]]}, 0); });
+  const auto start_face_tree = bvh(start_faces), start_edge_tree = bvh(start_edges);
+  const CandidateTrees start{faces_, edges_, used_, *start_face_tree, *start_edge_tree, obstacle_face_trees_, obstacle_edge_trees_};
+  StartCandidates kept;
+  kept.clear(x_.size(), edges_.size());
+  kept.pad = pad;
+  vertex_face_candidates(
+      start, nullptr, nullptr, 2, [&](int32_t v) { return hull({x_[static_cast<std::size_t>(v)]}, pad); },
+      [&](int32_t v, int32_t f) { kept.node_faces[static_cast<std::size_t>(v)].push_back(f); }, [](int32_t, std::size_t, int32_t) {});
+  edge_edge_candidates(
+      start, nullptr, nullptr, pad, 2, [](int32_t) { return Aabb(); },
+      [&](int32_t a, int32_t b) { kept.edge_edges[static_cast<std::size_t>(a)].push_back(b); }, [](std::size_t, int32_t, int32_t) {});
+  // The step: every node moves up to its reach in each coordinate, nodes 8, 24 and 40 much farther.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> within(-kept.slow_reach(eta), kept.slow_reach(eta));
+  std::vector<Vec3> end = x_;
+  for (Vec3& p : end) p += Vec3(within(rng), within(rng), within(rng));
+  for (const int n : {8, 24, 40}) end[static_cast<std::size_t>(n)] += Vec3(0.2, -0.15, 0.1);
+  const auto swept_faces = boxes_of(faces_, [&](const auto& f) { return hull({x_[f[0]], x_[f[1]], x_[f[2]], end[f[0]], end[f[1]], end[f[2]]}, eta); });
+  const auto swept_edges = boxes_of(edges_, [&](const auto& e) { return hull({x_[e[0]], x_[e[1]], end[e[0]], end[e[1]]}, eta); });
+  const auto face_tree = bvh(swept_faces), edge_tree = bvh(swept_edges);
+  const CandidateTrees swept{faces_, edges_, used_, *face_tree, *edge_tree, obstacle_face_trees_, obstacle_edge_trees_};
+  std::vector<char> far(x_.size(), 0);
+  for (std::size_t n = 0; n < x_.size(); ++n) far[n] = (end[n] - x_[n]).cwiseAbs().maxCoeff() > kept.slow_reach(eta);
+  EXPECT_EQ(std::count(far.begin(), far.end(), 1), 3);
+  const MovedPrimitives moved(far, swept, swept_faces, swept_edges);
+  auto vertex_box = [&](int32_t v) { return hull({x_[static_cast<std::size_t>(v)], end[static_cast<std::size_t>(v)]}, eta); };
+  for (const int threads : {1, 2}) {
+    Found vf_all, vf_listed, ee_all, ee_listed;
+    std::mutex lock;
+    auto into = [&](Found& found) {
+      return [&found, &lock](int o, int32_t a, int32_t b) {
+        std::lock_guard<std::mutex> hold(lock);
+        found.insert({o, a, b});
+      };
+    };
+    auto search = [&](const MovedPrimitives* m, const StartCandidates* listed, Found& vf, Found& ee) {
+      auto add_vf = into(vf);
+      auto add_ee = into(ee);
+      vertex_face_candidates(
+          swept, m, listed, threads, vertex_box, [&](int32_t v, int32_t f) { add_vf(-1, v, f); },
+          [&](int32_t v, std::size_t o, int32_t f) { add_vf(static_cast<int>(o), v, f); });
+      edge_edge_candidates(
+          swept, m, listed, 0.0, threads, [&](int32_t e) { return swept_edges[static_cast<std::size_t>(e)]; },
+          [&](int32_t a, int32_t b) { add_ee(-1, std::min(a, b), std::max(a, b)); },
+          [&](std::size_t o, int32_t a, int32_t b) { add_ee(static_cast<int>(o), a, b); });
+    };
+    search(nullptr, nullptr, vf_all, ee_all);
+    search(&moved, &kept, vf_listed, ee_listed);
+    EXPECT_GT(vf_all.size(), 50u);
+    EXPECT_GT(ee_all.size(), 100u);
+    EXPECT_EQ(vf_listed, vf_all) << threads;
+    EXPECT_EQ(ee_listed, ee_all) << threads;  // a multiset: each pair once
+    // The lists alone, the three nodes that moved far taken for slow, miss pairs.
+    const std::vector<char> none(x_.size(), 0);
+    const MovedPrimitives nothing_far(none, swept, swept_faces, swept_edges);
+    Found vf_lists, ee_lists;
+    search(&nothing_far, &kept, vf_lists, ee_lists);
+    EXPECT_LT(vf_lists.size(), vf_all.size());
+    EXPECT_LT(ee_lists.size(), ee_all.size());
+  }
 }
 
 }  // namespace
