@@ -47,14 +47,15 @@ struct CandidateTrees {
   const std::vector<const Bvh*>& obstacle_edge_trees;
 };
 
-// The cloth-cloth candidates of a step's proximity search (proximity.cpp), kept for the step's
-// first round of continuous detection: found with boxes of the step's start positions, one of
-// each pair grown by `pad`, they hold every pair whose swept boxes, grown by eta each, can meet
-// when neither primitive's nodes move farther than (pad - 2 eta) / 2 in any coordinate over the
-// step (a swept box lies within its start box grown by that much). Only the primitives that move
-// farther then need the hierarchies.
+// The cloth-cloth candidates of a proximity search (proximity.cpp), kept for the searches and
+// first impact rounds of the steps after it: found with boxes of the positions `x`, one of each
+// pair grown by `pad` (twice the band), they hold every pair whose boxes at other positions, one
+// grown by d, meet when neither primitive's nodes are farther than (pad - d) / 2 from `x` in any
+// coordinate (a box lies within its box at `x` grown by that much). A proximity search (d the
+// band) or an impact round (swept boxes, d = 2 eta, each node's farther end counted) then needs
+// the hierarchies only for primitives with a node farther than that.
 struct StartCandidates {
-  Eigen::VectorXd x;  // the start positions they were found at
+  Eigen::VectorXd x;  // the positions they were found at
   double pad = 0;
   std::vector<std::vector<int32_t>> node_faces;  // per cloth node: the cloth faces not around it it met
   std::vector<std::vector<int32_t>> edge_edges;  // per cloth edge: the edges it met (each pair under one of its two)
@@ -66,16 +67,38 @@ struct StartCandidates {
     for (auto& l : node_faces) l.clear();
     for (auto& l : edge_edges) l.clear();
   }
-  // The largest move, in any coordinate, that keeps a primitive's pairs in the lists.
-  double slow_reach(double eta) const { return 0.5 * (pad - 2 * eta) - 1e-9; }
+  // How far from `x` a node may be for its pairs, within d of each other, to be in the lists.
+  double reach(double d) const { return 0.5 * (pad - d) - 1e-9; }
+  // Per node: whether it is farther than reach(d) from `x` at `a` or at `b` (a step's start and
+  // end; both the same for a search at one time), once the mean displacement of the nodes in
+  // `used` is taken out: moving every box alike changes no pair that meets.
+  std::vector<char> beyond(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double d, const std::vector<char>& used) const {
+    Vec3 shift = Vec3::Zero();
+    double count = 0;
+    for (std::size_t n = 0; n < used.size(); ++n)
+      if (used[n]) {
+        const auto i = static_cast<Eigen::Index>(3 * n);
+        shift += 0.5 * (a.segment<3>(i) + b.segment<3>(i)) - x.segment<3>(i);
+        count += 1;
+      }
+    if (count > 0) shift /= count;
+    std::vector<char> far(used.size(), 0);
+    const double r = reach(d);
+    for (std::size_t n = 0; n < far.size(); ++n) {
+      const auto i = static_cast<Eigen::Index>(3 * n);
+      const Vec3 home = x.segment<3>(i) + shift;
+      far[n] = std::max((a.segment<3>(i) - home).cwiseAbs().maxCoeff(), (b.segment<3>(i) - home).cwiseAbs().maxCoeff()) > r;
+    }
+    return far;
+  }
 };
 
 // The cloth primitives with a node that the last round of impact projection moved (Bridson et
 // al. 2002, section 7.4, iterated): only a pair with one of them can hold a new impact. A query
 // primitive with a moved node meets everything; the others meet only the moved cloth primitives
-// and no obstacle (which did not move). In a first round with `StartCandidates`, "moved" means
-// moved past their reach: the others meet the moved cloth primitives, their listed ones that did
-// not move, and the obstacles.
+// and no obstacle (which did not move). With `StartCandidates`, "moved" means gone beyond the
+// lists' reach: the others meet the moved cloth primitives, their listed ones that did not move,
+// and the obstacles.
 class MovedPrimitives {
  public:
   // `face_boxes` and `edge_boxes`: the boxes of the trees' cloth primitives in this round.

@@ -224,16 +224,6 @@ class ImpactRound {
   std::vector<std::vector<Hits>> obstacle_hits_;
 };
 
-// Per node: whether it moves farther than `reach` in some coordinate between x_start and x_end.
-std::vector<char> moved_past(const Eigen::VectorXd& x_start, const Eigen::VectorXd& x_end, double reach) {
-  std::vector<char> past(static_cast<std::size_t>(x_start.size() / 3), 0);
-  for (std::size_t n = 0; n < past.size(); ++n) {
-    const auto i = static_cast<Eigen::Index>(3 * n);
-    past[n] = (x_end.segment<3>(i) - x_start.segment<3>(i)).cwiseAbs().maxCoeff() > reach;
-  }
-  return past;
-}
-
 }  // namespace
 
 Collider::Collider(const std::vector<std::array<int32_t, 3>>& cloth_faces, std::vector<CollisionMesh> obstacles, int32_t num_nodes)
@@ -319,13 +309,13 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     const CandidateTrees trees{cloth_faces_, cloth_edges_, cloth_node_used, cloth_face_tree_.update(face_boxes),
                                cloth_edge_tree_.update(edge_boxes), obstacle_face_bvh, obstacle_edge_bvh};
     // After the first round only pairs with a node that a projection moved can hold a new impact.
-    // In the first, the proximity search made where the step starts holds the cloth pairs of
-    // the nodes that moved little.
+    // In the first, the lists of the last proximity search made hold the cloth pairs of the
+    // nodes that stay near where it was made.
     std::optional<MovedPrimitives> moved_primitives;
-    const bool listed = round == 0 && start_candidates_.x.size() == x_start.size() && start_candidates_.x == x_start;
-    std::vector<char> far;  // in a listed first round: the nodes that move past the lists' reach
+    const bool listed = round == 0 && start_candidates_.x.size() == x_start.size();
+    std::vector<char> far;  // in a listed first round: the nodes that go beyond the lists' reach
     if (listed) {
-      far = moved_past(x_start, x_end, start_candidates_.slow_reach(scene.eta));
+      far = start_candidates_.beyond(x_start, x_end, 2 * scene.eta, cloth_node_used);
       moved_primitives.emplace(far, trees, face_boxes, edge_boxes);
     }
     if (round > 0) moved_primitives.emplace(moved, trees, face_boxes, edge_boxes);

@@ -100,33 +100,58 @@ class ProximitySearch {
   }
 
   // Cloth vertices: the nearest cloth face on each side, the nearest face of each obstacle.
-  void cloth_vertices(const CandidateTrees& trees, int threads) {
+  // Without `far`, every node queries the hierarchies with its box grown by the lists' pad, its
+  // cloth faces listed in `kept_`, and the pairs within the band tested; with `far`, the kept
+  // lists answer for the nodes that stayed near where they were made.
+  void cloth_vertices(const CandidateTrees& trees, const MovedPrimitives* far, int threads) {
+    auto face = [&](int32_t i, int32_t f) { cloth_face(i, f); };
+    auto obstacle = [&](int32_t i, std::size_t o, int32_t f) { obstacle_face(i, o, f); };
+    if (far != nullptr) {
+      vertex_face_candidates(trees, far, &kept_, threads, [&](int32_t i) { return point_box(cx(i), s_.band); }, face, obstacle);
+      return;
+    }
     vertex_face_candidates(
-        trees, nullptr, nullptr, threads, [&](int32_t i) { return point_box(cx(i)); },
+        trees, nullptr, nullptr, threads, [&](int32_t i) { return point_box(cx(i), kept_.pad); },
         [&](int32_t i, int32_t f) {
           kept_.node_faces[static_cast<std::size_t>(i)].push_back(f);
-          cloth_face(i, f);
+          if (trees.cloth_face_tree.leaf_boxes()[static_cast<std::size_t>(f)].overlaps(point_box(cx(i), s_.band))) face(i, f);
         },
-        [&](int32_t i, std::size_t o, int32_t f) { obstacle_face(i, o, f); });
+        [&](int32_t i, std::size_t o, int32_t f) {
+          if (trees.obstacle_face_trees[o]->leaf_boxes()[static_cast<std::size_t>(f)].overlaps(point_box(cx(i), s_.band))) obstacle(i, o, f);
+        });
   }
 
   // Obstacle vertices: the nearest cloth face.
   void obstacle_vertices(const CandidateTrees& trees, int threads) {
     obstacle_vertex_candidates(
         trees, obstacle_vertices_, nullptr, threads,
-        [&](std::size_t o, int32_t i) { return point_box(s_.obstacle_x[o][static_cast<std::size_t>(i)]); },
+        [&](std::size_t o, int32_t i) { return point_box(s_.obstacle_x[o][static_cast<std::size_t>(i)], s_.band); },
         [&](std::size_t o, int32_t i, int32_t f) { obstacle_vertex_face(o, i, f); });
   }
 
-  // Edges: pairs whose closest points are inside both edges, each cloth pair once.
-  void edges(const CandidateTrees& trees, int threads) {
+  // Edges: pairs whose closest points are inside both edges, each cloth pair once; the cloth
+  // pairs listed or taken from the lists as for the vertices. `edge_boxes`: the cloth edges'.
+  void edges(const CandidateTrees& trees, const std::vector<Aabb>& edge_boxes, const MovedPrimitives* far, int threads) {
+    auto grown = [&](int32_t e) {
+      Aabb b = edge_boxes[static_cast<std::size_t>(e)];
+      b.pad(s_.band);
+      return b;
+    };
+    auto cloth = [&](int32_t met_by, int32_t other) { cloth_edge_pair(met_by, other); };
+    auto obstacle = [&](std::size_t o, int32_t ea, int32_t eb) { obstacle_edge_pair(o, ea, eb); };
+    if (far != nullptr) {
+      edge_edge_candidates(trees, far, &kept_, 0.0, threads, grown, cloth, obstacle);
+      return;
+    }
     edge_edge_candidates(
-        trees, nullptr, nullptr, s_.band, threads, [](int32_t) { return Aabb(); },
+        trees, nullptr, nullptr, kept_.pad, threads, [](int32_t) { return Aabb(); },
         [&](int32_t met_by, int32_t other) {
           kept_.edge_edges[static_cast<std::size_t>(met_by)].push_back(other);
-          cloth_edge_pair(met_by, other);
+          if (grown(met_by).overlaps(edge_boxes[static_cast<std::size_t>(other)])) cloth(met_by, other);
         },
-        [&](std::size_t o, int32_t ea, int32_t eb) { obstacle_edge_pair(o, ea, eb); });
+        [&](std::size_t o, int32_t ea, int32_t eb) {
+          if (grown(ea).overlaps(trees.obstacle_edge_trees[o]->leaf_boxes()[static_cast<std::size_t>(eb)])) obstacle(o, ea, eb);
+        });
   }
 
   // Every pair found with a node that moves in the solve: vertex pairs in slot order, then the
@@ -150,9 +175,9 @@ class ProximitySearch {
  private:
   Vec3 cx(int32_t i) const { return Vec3(s_.x.segment<3>(3 * i)); }
 
-  Aabb point_box(const Vec3& p) const {
+  Aabb point_box(const Vec3& p, double pad) const {
     Aabb box = box_of({p});
-    box.pad(s_.band);
+    box.pad(pad);
     return box;
   }
 
@@ -336,13 +361,29 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   const CandidateTrees trees{cloth_faces_, cloth_edges_, used, face_bvh, edge_bvh, obstacle_face_bvh, obstacle_edge_bvh};
   const ProximityScene scene{cloth_faces_, cloth_edges_, obstacles_, obstacle_edges_, obstacle_adjacency_, x, v, fixed,
                              obstacle_x, obstacle_v, band};
-  start_candidates_.clear(static_cast<std::size_t>(num_nodes_), cloth_edges_.size());
-  start_candidates_.x = x;
-  start_candidates_.pad = band;
+  // The kept lists answer while at most one node in sixteen has gone beyond their reach; else
+  // this search makes them again, reaching a band past its own.
+  std::vector<char> far;
+  std::optional<MovedPrimitives> far_primitives;
+  if (start_candidates_.x.size() == x.size() && start_candidates_.pad == 2 * band) {
+    far = start_candidates_.beyond(x, x, band, used);
+    std::size_t beyond = 0, in_use = 0;
+    for (std::size_t n = 0; n < used.size(); ++n) {
+      in_use += used[n] != 0;
+      beyond += used[n] != 0 && far[n] != 0;
+    }
+    if (16 * beyond <= in_use) far_primitives.emplace(far, trees, face_boxes, edge_boxes);
+  }
+  if (!far_primitives) {
+    start_candidates_.clear(static_cast<std::size_t>(num_nodes_), cloth_edges_.size());
+    start_candidates_.x = x;
+    start_candidates_.pad = 2 * band;
+  }
+  const MovedPrimitives* listed = far_primitives ? &*far_primitives : nullptr;
   ProximitySearch search(scene, num_nodes_, start_candidates_);
-  search.cloth_vertices(trees, threads);
+  search.cloth_vertices(trees, listed, threads);
   search.obstacle_vertices(trees, threads);
-  search.edges(trees, threads);
+  search.edges(trees, edge_boxes, listed, threads);
   return search.pairs();
 }
 

@@ -166,9 +166,10 @@ TEST_F(CandidatesTest, EveryQueryFindsExactlyTheBoxesItMeets) {
   EXPECT_EQ(edge_pairs(&only_moved, 2), ee_moved);
 }
 
-// A step's first round of continuous detection from the cloth pairs its proximity search met at
-// the step's start (pad 0.05): with most nodes moving less than the lists' reach and three moving
-// far, vertex-face and edge-edge candidates are exactly those a search of the swept boxes finds.
+// A first round of continuous detection from the cloth pairs a proximity search met (pad 0.05)
+// some steps before, the sheet moved on since: with most nodes near where the search found them
+// once the common motion is taken out and three moved far, vertex-face and edge-edge candidates
+// are exactly those a search of the swept boxes finds.
 TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSweptBoxesFinds) {
   const double pad = 0.05, eta = 1e-4;
   auto boxes_of = [](const auto& items, auto&& box) {
@@ -197,21 +198,34 @@ TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSwep
   edge_edge_candidates(
       start, nullptr, nullptr, pad, 2, [](int32_t) { return Aabb(); },
       [&](int32_t a, int32_t b) { kept.edge_edges[static_cast<std::size_t>(a)].push_back(b); }, [](std::size_t, int32_t, int32_t) {});
-  // The step: every node moves up to its reach in each coordinate, nodes 8, 24 and 40 much farther.
+  // Steps later the whole sheet has moved 0.3 m, far past the lists' reach: this step starts
+  // there and moves every node up to a third of the reach in each coordinate, nodes 8, 24 and 40
+  // much farther. Taking out the common motion leaves those three beyond the reach.
   std::mt19937 rng(3);
-  std::uniform_real_distribution<double> within(-kept.slow_reach(eta), kept.slow_reach(eta));
-  std::vector<Vec3> end = x_;
-  for (Vec3& p : end) p += Vec3(within(rng), within(rng), within(rng));
+  const double r = kept.reach(2 * eta);
+  std::uniform_real_distribution<double> within(-r / 3, r / 3);
+  std::vector<Vec3> begin = x_, end = x_;
+  for (std::size_t n = 0; n < x_.size(); ++n) {
+    begin[n] += Vec3(0.3, 0.1, -0.2) + Vec3(within(rng), within(rng), within(rng));
+    end[n] = begin[n] + Vec3(within(rng), within(rng), within(rng));
+  }
   for (const int n : {8, 24, 40}) end[static_cast<std::size_t>(n)] += Vec3(0.2, -0.15, 0.1);
-  const auto swept_faces = boxes_of(faces_, [&](const auto& f) { return hull({x_[f[0]], x_[f[1]], x_[f[2]], end[f[0]], end[f[1]], end[f[2]]}, eta); });
-  const auto swept_edges = boxes_of(edges_, [&](const auto& e) { return hull({x_[e[0]], x_[e[1]], end[e[0]], end[e[1]]}, eta); });
+  const auto swept_faces =
+      boxes_of(faces_, [&](const auto& f) { return hull({begin[f[0]], begin[f[1]], begin[f[2]], end[f[0]], end[f[1]], end[f[2]]}, eta); });
+  const auto swept_edges = boxes_of(edges_, [&](const auto& e) { return hull({begin[e[0]], begin[e[1]], end[e[0]], end[e[1]]}, eta); });
   const auto face_tree = bvh(swept_faces), edge_tree = bvh(swept_edges);
   const CandidateTrees swept{faces_, edges_, used_, *face_tree, *edge_tree, obstacle_face_trees_, obstacle_edge_trees_};
-  std::vector<char> far(x_.size(), 0);
-  for (std::size_t n = 0; n < x_.size(); ++n) far[n] = (end[n] - x_[n]).cwiseAbs().maxCoeff() > kept.slow_reach(eta);
+  auto stacked = [](const std::vector<Vec3>& p) {
+    Eigen::VectorXd v(3 * static_cast<Eigen::Index>(p.size()));
+    for (std::size_t n = 0; n < p.size(); ++n) v.segment<3>(3 * static_cast<Eigen::Index>(n)) = p[n];
+    return v;
+  };
+  kept.x = stacked(x_);
+  const std::vector<char> far = kept.beyond(stacked(begin), stacked(end), 2 * eta, used_);
   EXPECT_EQ(std::count(far.begin(), far.end(), 1), 3);
+  EXPECT_TRUE(far[8] && far[24] && far[40]);
   const MovedPrimitives moved(far, swept, swept_faces, swept_edges);
-  auto vertex_box = [&](int32_t v) { return hull({x_[static_cast<std::size_t>(v)], end[static_cast<std::size_t>(v)]}, eta); };
+  auto vertex_box = [&](int32_t v) { return hull({begin[static_cast<std::size_t>(v)], end[static_cast<std::size_t>(v)]}, eta); };
   for (const int threads : {1, 2}) {
     Found vf_all, vf_listed, ee_all, ee_listed;
     std::mutex lock;
