@@ -1,6 +1,29 @@
 #include "collision/candidates.hpp"
 
+#include <algorithm>
+
 namespace vdc {
+
+// Which nodes have left the neighbour lists' reach (Verlet 1967's lists, with the common motion taken out).
+std::vector<char> KeptClothPairs::beyond(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double d, const std::vector<char>& used) const {
+  Vec3 shift = Vec3::Zero();
+  double count = 0;
+  for (std::size_t n = 0; n < used.size(); ++n)
+    if (used[n]) {
+      const auto i = static_cast<Eigen::Index>(3 * n);
+      shift += 0.5 * (a.segment<3>(i) + b.segment<3>(i)) - x.segment<3>(i);
+      count += 1;
+    }
+  if (count > 0) shift /= count;
+  std::vector<char> far(used.size(), 0);
+  const double r = reach(d);
+  for (std::size_t n = 0; n < far.size(); ++n) {
+    const auto i = static_cast<Eigen::Index>(3 * n);
+    const Vec3 home = x.segment<3>(i) + shift;
+    far[n] = std::max((a.segment<3>(i) - home).cwiseAbs().maxCoeff(), (b.segment<3>(i) - home).cwiseAbs().maxCoeff()) > r;
+  }
+  return far;
+}
 
 std::vector<Aabb> MovedPrimitives::boxes_of(const std::vector<int32_t>& items, const std::vector<Aabb>& boxes) {
   std::vector<Aabb> out;

@@ -54,7 +54,7 @@ struct CandidateTrees {
 // coordinate (a box lies within its box at `x` grown by that much). A proximity search (d the
 // band) or an impact round (swept boxes, d = 2 eta, each node's farther end counted) then needs
 // the hierarchies only for primitives with a node farther than that.
-struct StartCandidates {
+struct KeptClothPairs {
   Eigen::VectorXd x;  // the positions they were found at
   double pad = 0;
   std::vector<std::vector<int32_t>> node_faces;  // per cloth node: the cloth faces not around it it met
@@ -72,31 +72,13 @@ struct StartCandidates {
   // Per node: whether it is farther than reach(d) from `x` at `a` or at `b` (a step's start and
   // end; both the same for a search at one time), once the mean displacement of the nodes in
   // `used` is taken out: moving every box alike changes no pair that meets.
-  std::vector<char> beyond(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double d, const std::vector<char>& used) const {
-    Vec3 shift = Vec3::Zero();
-    double count = 0;
-    for (std::size_t n = 0; n < used.size(); ++n)
-      if (used[n]) {
-        const auto i = static_cast<Eigen::Index>(3 * n);
-        shift += 0.5 * (a.segment<3>(i) + b.segment<3>(i)) - x.segment<3>(i);
-        count += 1;
-      }
-    if (count > 0) shift /= count;
-    std::vector<char> far(used.size(), 0);
-    const double r = reach(d);
-    for (std::size_t n = 0; n < far.size(); ++n) {
-      const auto i = static_cast<Eigen::Index>(3 * n);
-      const Vec3 home = x.segment<3>(i) + shift;
-      far[n] = std::max((a.segment<3>(i) - home).cwiseAbs().maxCoeff(), (b.segment<3>(i) - home).cwiseAbs().maxCoeff()) > r;
-    }
-    return far;
-  }
+  std::vector<char> beyond(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double d, const std::vector<char>& used) const;
 };
 
 // The cloth primitives with a node that the last round of impact projection moved (Bridson et
 // al. 2002, section 7.4, iterated): only a pair with one of them can hold a new impact. A query
 // primitive with a moved node meets everything; the others meet only the moved cloth primitives
-// and no obstacle (which did not move). With `StartCandidates`, "moved" means gone beyond the
+// and no obstacle (which did not move). With `KeptClothPairs`, "moved" means gone beyond the
 // lists' reach: the others meet the moved cloth primitives, their listed ones that did not move,
 // and the obstacles.
 class MovedPrimitives {
@@ -132,7 +114,7 @@ class MovedPrimitives {
 // the moved cloth faces; with `listed` too (a first round), also its listed faces that did not
 // move and whose boxes meet its box, and the obstacles.
 template <class VertexBox, class ClothFace, class ObstacleFace>
-void vertex_face_candidates(const CandidateTrees& t, const MovedPrimitives* moved, const StartCandidates* listed, int threads,
+void vertex_face_candidates(const CandidateTrees& t, const MovedPrimitives* moved, const KeptClothPairs* listed, int threads,
                             VertexBox&& vertex_box, ClothFace&& cloth_face, ObstacleFace&& obstacle_face) {
   const auto num_nodes = static_cast<int32_t>(t.node_used.size());
 #pragma omp parallel for schedule(dynamic, 128) num_threads(threads)
@@ -185,7 +167,7 @@ void obstacle_vertex_candidates(const CandidateTrees& t, const std::vector<std::
 // the obstacles; with `listed` too (a first round), an edge that did not move meets its listed
 // edges that did not move (each such pair under the edge it is listed under) and the obstacles.
 template <class EdgeBox, class ClothPair, class ObstaclePair>
-void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved, const StartCandidates* listed, double pad, int threads,
+void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved, const KeptClothPairs* listed, double pad, int threads,
                           EdgeBox&& edge_box, ClothPair&& cloth_pair, ObstaclePair&& obstacle_pair) {
   auto cloth = [&](int32_t ea, int32_t eb) {
     const auto& a = t.cloth_edges[static_cast<std::size_t>(ea)];

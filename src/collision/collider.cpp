@@ -118,9 +118,9 @@ class ImpactRound {
   // Finds the round's impacts: cloth vertices against cloth and obstacle faces, obstacle
   // vertices against cloth faces, cloth edges against cloth and obstacle edges.
   // `only_moved` and `listed` as for vertex_face_candidates: none in a first round that searches
-  // everything, both in one that takes the proximity search's candidates, `only_moved` alone in
-  // a later round. Obstacle vertices meet every cloth face in a first round.
-  void detect(const CandidateTrees& trees, const MovedPrimitives* only_moved, const StartCandidates* listed,
+  // everything, both in one that takes a proximity search's kept pairs, `only_moved` alone in a
+  // later round. Obstacle vertices meet every cloth face in a first round.
+  void detect(const CandidateTrees& trees, const MovedPrimitives* only_moved, const KeptClothPairs* listed,
               const std::vector<ObstacleTrees>& obstacle_trees, const std::vector<Aabb>& edge_boxes, int threads) {
     vertex_hits_.assign(trees.node_used.size(), Hits{});
     vertex_face_candidates(
@@ -246,7 +246,7 @@ void Collider::set_cloth(const std::vector<std::array<int32_t, 3>>& cloth_faces,
   edges_of(cloth_faces_, cloth_edges_, face_edges_);
   cloth_face_tree_ = RefitBvh();
   cloth_edge_tree_ = RefitBvh();
-  start_candidates_ = StartCandidates();
+  kept_pairs_ = KeptClothPairs();
 }
 
 std::vector<const Bvh*> face_trees_at(const std::vector<CollisionMesh>& obstacles, const std::vector<std::vector<Vec3>>& obstacle_x,
@@ -312,15 +312,15 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     // In the first, the lists of the last proximity search made hold the cloth pairs of the
     // nodes that stay near where it was made.
     std::optional<MovedPrimitives> moved_primitives;
-    const bool listed = round == 0 && start_candidates_.x.size() == x_start.size();
+    const bool listed = round == 0 && kept_pairs_.x.size() == x_start.size();
     std::vector<char> far;  // in a listed first round: the nodes that go beyond the lists' reach
     if (listed) {
-      far = start_candidates_.beyond(x_start, x_end, 2 * scene.eta, cloth_node_used);
+      far = kept_pairs_.beyond(x_start, x_end, 2 * scene.eta, cloth_node_used);
       moved_primitives.emplace(far, trees, face_boxes, edge_boxes);
     }
     if (round > 0) moved_primitives.emplace(moved, trees, face_boxes, edge_boxes);
     ImpactRound detection(scene, budget);
-    detection.detect(trees, moved_primitives ? &*moved_primitives : nullptr, listed ? &start_candidates_ : nullptr, obstacle_trees_, edge_boxes,
+    detection.detect(trees, moved_primitives ? &*moved_primitives : nullptr, listed ? &kept_pairs_ : nullptr, obstacle_trees_, edge_boxes,
                      params.threads);
     const int64_t met = detection.met();
     stats.candidates = std::max(stats.candidates, met);

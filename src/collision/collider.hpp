@@ -103,9 +103,9 @@ class Collider {
   // Hierarchies kept from step to step, refit to the boxes of each query (an obstacle's only
   // when it has moved since the last).
   RefitBvh cloth_face_tree_, cloth_edge_tree_;
-  // The last proximity search's cloth-cloth candidates, for the first detection round of a step
-  // that starts where the search was made.
-  StartCandidates start_candidates_;
+  // The cloth-cloth pairs a proximity search listed, for the searches and first detection rounds
+  // after it while the cloth stays near where they were listed.
+  KeptClothPairs kept_pairs_;
   std::vector<ObstacleTrees> obstacle_trees_;
 };
 

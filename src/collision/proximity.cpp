@@ -82,8 +82,9 @@ struct ProximityScene {
 // (called in parallel, one query primitive's slots each), then taken in a fixed order.
 class ProximitySearch {
  public:
-  // `kept`: where the cloth-cloth candidates met are listed for the step's continuous detection.
-  ProximitySearch(const ProximityScene& scene, int32_t num_nodes, StartCandidates& kept)
+  // `kept`: the cloth-cloth pairs listed by an earlier search (taken when cloth_vertices and
+  // edges are given the primitives beyond their reach), or to be listed by this one.
+  ProximitySearch(const ProximityScene& scene, int32_t num_nodes, KeptClothPairs& kept)
       : s_(scene), kept_(kept), num_obstacles_(scene.obstacles.size()), per_vertex_(2 + num_obstacles_),
         vertex_pairs_(static_cast<std::size_t>(num_nodes) * per_vertex_), slot_face_(vertex_pairs_.size(), -1),
         nearest_obstacle_(static_cast<std::size_t>(num_nodes) * num_obstacles_, scene.band),
@@ -323,7 +324,7 @@ class ProximitySearch {
   }
 
   const ProximityScene& s_;
-  StartCandidates& kept_;
+  KeptClothPairs& kept_;
   const std::size_t num_obstacles_, per_vertex_;
   std::vector<std::optional<ProximityPair>> vertex_pairs_;  // per cloth vertex: two cloth sides, then each obstacle
   std::vector<int32_t> slot_face_;          // the face each slot holds
@@ -365,8 +366,8 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   // this search makes them again, reaching a band past its own.
   std::vector<char> far;
   std::optional<MovedPrimitives> far_primitives;
-  if (start_candidates_.x.size() == x.size() && start_candidates_.pad == 2 * band) {
-    far = start_candidates_.beyond(x, x, band, used);
+  if (kept_pairs_.x.size() == x.size() && kept_pairs_.pad == 2 * band) {
+    far = kept_pairs_.beyond(x, x, band, used);
     std::size_t beyond = 0, in_use = 0;
     for (std::size_t n = 0; n < used.size(); ++n) {
       in_use += used[n] != 0;
@@ -375,12 +376,12 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     if (16 * beyond <= in_use) far_primitives.emplace(far, trees, face_boxes, edge_boxes);
   }
   if (!far_primitives) {
-    start_candidates_.clear(static_cast<std::size_t>(num_nodes_), cloth_edges_.size());
-    start_candidates_.x = x;
-    start_candidates_.pad = 2 * band;
+    kept_pairs_.clear(static_cast<std::size_t>(num_nodes_), cloth_edges_.size());
+    kept_pairs_.x = x;
+    kept_pairs_.pad = 2 * band;
   }
   const MovedPrimitives* listed = far_primitives ? &*far_primitives : nullptr;
-  ProximitySearch search(scene, num_nodes_, start_candidates_);
+  ProximitySearch search(scene, num_nodes_, kept_pairs_);
   search.cloth_vertices(trees, listed, threads);
   search.obstacle_vertices(trees, threads);
   search.edges(trees, edge_boxes, listed, threads);

@@ -64,7 +64,7 @@ class CandidatesTest : public ::testing::Test {
 
   using Found = std::multiset<std::tuple<int, int, int>>;  // (obstacle or -1, query, candidate)
   // What each query of the stage finds, with `moved` (or none) and `threads`.
-  Found vertex_faces(const MovedPrimitives* moved, int threads, const StartCandidates* listed = nullptr) const {
+  Found vertex_faces(const MovedPrimitives* moved, int threads, const KeptClothPairs* listed = nullptr) const {
     Found found;
     std::mutex lock;
     vertex_face_candidates(
@@ -90,7 +90,7 @@ class CandidatesTest : public ::testing::Test {
         });
     return found;
   }
-  Found edge_pairs(const MovedPrimitives* moved, int threads, const StartCandidates* listed = nullptr) const {
+  Found edge_pairs(const MovedPrimitives* moved, int threads, const KeptClothPairs* listed = nullptr) const {
     Found found;
     std::mutex lock;
     edge_edge_candidates(
@@ -189,7 +189,7 @@ TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSwep
   const auto start_edges = boxes_of(edges_, [&](const auto& e) { return hull({x_[e[0]], x_[e[1]]}, 0); });
   const auto start_face_tree = bvh(start_faces), start_edge_tree = bvh(start_edges);
   const CandidateTrees start{faces_, edges_, used_, *start_face_tree, *start_edge_tree, obstacle_face_trees_, obstacle_edge_trees_};
-  StartCandidates kept;
+  KeptClothPairs kept;
   kept.clear(x_.size(), edges_.size());
   kept.pad = pad;
   vertex_face_candidates(
@@ -235,7 +235,7 @@ TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSwep
         found.insert({o, a, b});
       };
     };
-    auto search = [&](const MovedPrimitives* m, const StartCandidates* listed, Found& vf, Found& ee) {
+    auto search = [&](const MovedPrimitives* m, const KeptClothPairs* listed, Found& vf, Found& ee) {
       auto add_vf = into(vf);
       auto add_ee = into(ee);
       vertex_face_candidates(
