@@ -306,8 +306,8 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       const auto& e = cloth_edges_[i];
       return path_box(scene, {{-1, e[0]}, {-1, e[1]}});
     });
-    const CandidateTrees trees{cloth_faces_, cloth_edges_, cloth_node_used, cloth_face_tree_.update(face_boxes),
-                               cloth_edge_tree_.update(edge_boxes), obstacle_face_bvh, obstacle_edge_bvh};
+    const CandidateTrees trees{cloth_faces_, cloth_edges_, cloth_node_used, cloth_face_tree_.update(face_boxes, params.threads),
+                               cloth_edge_tree_.update(edge_boxes, params.threads), obstacle_face_bvh, obstacle_edge_bvh};
     // After the first round only pairs with a node that a projection moved can hold a new impact.
     // In the first, the lists of the last proximity search made hold the cloth pairs of the
     // nodes that stay near where it was made.

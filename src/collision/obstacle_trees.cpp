@@ -19,12 +19,12 @@ void ObstacleTrees::sweep(const std::vector<std::array<int32_t, 3>>& faces, cons
     b.grow(box(faces[i][1]));
     b.grow(box(faces[i][2]));
     return b;
-  }));
+  }), threads);
   edges_ = &edge_tree_.update(leaf_boxes(edges.size(), threads, [&](std::size_t i) {
     Aabb b = box(edges[i][0]);
     b.grow(box(edges[i][1]));
     return b;
-  }));
+  }), threads);
   held_ = end;
 }
 

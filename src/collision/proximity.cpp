@@ -348,8 +348,8 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
     return box_of({cx(f[0]), cx(f[1]), cx(f[2])});
   });
   const std::vector<Aabb> edge_boxes = leaf_boxes(cloth_edges_.size(), threads, [&](std::size_t i) { return box_of({cx(cloth_edges_[i][0]), cx(cloth_edges_[i][1])}); });
-  const Bvh& face_bvh = cloth_face_tree_.update(face_boxes);
-  const Bvh& edge_bvh = cloth_edge_tree_.update(edge_boxes);
+  const Bvh& face_bvh = cloth_face_tree_.update(face_boxes, threads);
+  const Bvh& edge_bvh = cloth_edge_tree_.update(edge_boxes, threads);
   std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
     obstacle_trees_[o].hold(obstacles_[o].faces, obstacle_edges_[o], obstacle_x[o], threads);

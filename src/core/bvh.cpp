@@ -6,7 +6,7 @@
 
 namespace vdc {
 
-Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
+Bvh::Bvh(const std::vector<Aabb>& leaf_boxes, int threads) : leaf_box_(leaf_boxes) {
   std::vector<int32_t> prims(leaf_boxes.size());
   std::vector<Vec3> centres(leaf_boxes.size());
   for (std::size_t i = 0; i < leaf_boxes.size(); ++i) {
@@ -18,7 +18,37 @@ Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
     nodes_.push_back(Node{});
     return;
   }
-  build(prims, 0, prims.size(), centres);
+  if (threads < 2 || prims.size() < kParallelPrimitives) {
+    build(nodes_, leaves_, prims, 0, prims.size(), centres);
+  } else {
+    // The root split here, then its halves side by side: the left half numbered after the root
+    // as the one-thread build numbers it, the right half built apart and numbered after it.
+    nodes_.push_back(Node{{}, -1, -1, 0, static_cast<int32_t>(prims.size()) - 1});
+    const std::size_t mid = split(prims, 0, prims.size(), centres);
+    std::vector<Node> right;
+    int32_t right_leaves = 0;
+#pragma omp parallel sections num_threads(2)
+    {
+#pragma omp section
+      build(nodes_, leaves_, prims, 0, mid, centres);
+#pragma omp section
+      build(right, right_leaves, prims, mid, prims.size(), centres);
+    }
+    const auto offset = static_cast<int32_t>(nodes_.size());
+    for (Node n : right) {
+      if (n.left >= 0) {
+        n.left += offset;
+        n.right += offset;
+      }
+      nodes_.push_back(n);
+    }
+    leaves_ += right_leaves;
+    Node& root = nodes_.front();
+    root.left = 1;
+    root.right = offset;
+    root.box = nodes_[1].box;
+    root.box.grow(nodes_[static_cast<std::size_t>(offset)].box);
+  }
   order_ = std::move(prims);
   rank_.resize(order_.size());
   ranked_box_.resize(order_.size());
@@ -29,18 +59,7 @@ Bvh::Bvh(const std::vector<Aabb>& leaf_boxes) : leaf_box_(leaf_boxes) {
   measure_looseness();
 }
 
-int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres) {
-  const auto index = static_cast<int32_t>(nodes_.size());
-  nodes_.push_back(Node{});
-  nodes_[static_cast<std::size_t>(index)].first = static_cast<int32_t>(begin);
-  nodes_[static_cast<std::size_t>(index)].last = static_cast<int32_t>(end) - 1;
-  if (end - begin <= static_cast<std::size_t>(kLeafSize)) {
-    Aabb box;
-    for (std::size_t i = begin; i < end; ++i) box.grow(leaf_box_[static_cast<std::size_t>(prims[i])]);
-    nodes_[static_cast<std::size_t>(index)].box = box;
-    ++leaves_;
-    return index;
-  }
+std::size_t Bvh::split(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres) {
   Aabb c;
   for (std::size_t i = begin; i < end; ++i) c.grow(centres[static_cast<std::size_t>(prims[i])]);
   int axis = 0;
@@ -50,13 +69,30 @@ int32_t Bvh::build(std::vector<int32_t>& prims, std::size_t begin, std::size_t e
                    prims.begin() + static_cast<std::ptrdiff_t>(end), [&](int32_t a, int32_t b) {
                      return centres[static_cast<std::size_t>(a)][axis] < centres[static_cast<std::size_t>(b)][axis];
                    });
-  const int32_t left = build(prims, begin, mid, centres);
-  const int32_t right = build(prims, mid, end, centres);
-  Node& n = nodes_[static_cast<std::size_t>(index)];
+  return mid;
+}
+
+int32_t Bvh::build(std::vector<Node>& out, int32_t& leaves, std::vector<int32_t>& prims, std::size_t begin, std::size_t end,
+                   const std::vector<Vec3>& centres) const {
+  const auto index = static_cast<int32_t>(out.size());
+  out.push_back(Node{});
+  out[static_cast<std::size_t>(index)].first = static_cast<int32_t>(begin);
+  out[static_cast<std::size_t>(index)].last = static_cast<int32_t>(end) - 1;
+  if (end - begin <= static_cast<std::size_t>(kLeafSize)) {
+    Aabb box;
+    for (std::size_t i = begin; i < end; ++i) box.grow(leaf_box_[static_cast<std::size_t>(prims[i])]);
+    out[static_cast<std::size_t>(index)].box = box;
+    ++leaves;
+    return index;
+  }
+  const std::size_t mid = split(prims, begin, end, centres);
+  const int32_t left = build(out, leaves, prims, begin, mid, centres);
+  const int32_t right = build(out, leaves, prims, mid, end, centres);
+  Node& n = out[static_cast<std::size_t>(index)];
   n.left = left;
   n.right = right;
-  n.box = nodes_[static_cast<std::size_t>(left)].box;
-  n.box.grow(nodes_[static_cast<std::size_t>(right)].box);
+  n.box = out[static_cast<std::size_t>(left)].box;
+  n.box.grow(out[static_cast<std::size_t>(right)].box);
   return index;
 }
 
@@ -68,18 +104,44 @@ double half_area(const Aabb& b) {
 }
 }  // namespace
 
-void Bvh::refit(std::vector<Aabb> leaf_boxes) {
+void Bvh::refit(std::vector<Aabb> leaf_boxes, int threads) {
   leaf_box_ = std::move(leaf_boxes);
   if (leaf_box_.empty()) return;
-  double primitives = 0;
-  for (std::size_t r = 0; r < order_.size(); ++r) {
-    ranked_box_[r] = leaf_box_[static_cast<std::size_t>(order_[r])];
-    primitives += half_area(ranked_box_[r]);
+  const auto count = static_cast<int32_t>(nodes_.size());
+  const bool halves = threads >= 2 && leaf_box_.size() >= kParallelPrimitives && nodes_.front().left >= 0;
+  // Children come after their parent (the build numbers nodes depth first), so a backward pass
+  // over a subtree's nodes refits it bottom-up; the root's two subtrees are [1, right) and
+  // [right, count).
+  auto rank_boxes = [&](int64_t r) {
+    ranked_box_[static_cast<std::size_t>(r)] = leaf_box_[static_cast<std::size_t>(order_[static_cast<std::size_t>(r)])];
+  };
+  const auto ranked = static_cast<int64_t>(order_.size());
+  if (halves) {
+#pragma omp parallel num_threads(2)
+    {
+#pragma omp for schedule(static)
+      for (int64_t r = 0; r < ranked; ++r) rank_boxes(r);
+#pragma omp sections
+      {
+#pragma omp section
+        refit_nodes(1, nodes_.front().right);
+#pragma omp section
+        refit_nodes(nodes_.front().right, count);
+      }
+    }
+  } else {
+    for (int64_t r = 0; r < ranked; ++r) rank_boxes(r);
   }
-  // Children come after their parent (the build numbers nodes depth first), so one backward
-  // pass refits bottom-up, and measures the looseness on the way.
-  double nodes = 0;
-  for (auto i = static_cast<int64_t>(nodes_.size()) - 1; i >= 0; --i) {
+  refit_nodes(0, halves ? 1 : count);
+  // The looseness summed in one order whatever the threads.
+  double primitives = 0, nodes = 0;
+  for (const Aabb& b : ranked_box_) primitives += half_area(b);
+  for (auto i = static_cast<int64_t>(count) - 1; i >= 0; --i) nodes += half_area(nodes_[static_cast<std::size_t>(i)].box);
+  looseness_ = primitives > 0 ? nodes / primitives : nodes;
+}
+
+void Bvh::refit_nodes(int32_t first, int32_t last) {
+  for (int32_t i = last - 1; i >= first; --i) {
     Node& n = nodes_[static_cast<std::size_t>(i)];
     if (n.left < 0) {
       n.box = Aabb();
@@ -88,9 +150,7 @@ void Bvh::refit(std::vector<Aabb> leaf_boxes) {
       n.box = nodes_[static_cast<std::size_t>(n.left)].box;
       n.box.grow(nodes_[static_cast<std::size_t>(n.right)].box);
     }
-    nodes += half_area(n.box);
   }
-  looseness_ = primitives > 0 ? nodes / primitives : nodes;
 }
 
 void Bvh::measure_looseness() {

@@ -46,10 +46,12 @@ std::vector<Aabb> leaf_boxes(std::size_t n, int threads, BoxOf&& box_of) {
 
 class Bvh {
  public:
-  // One box per primitive (a triangle's swept, padded box, say). Builds the tree.
-  explicit Bvh(const std::vector<Aabb>& leaf_boxes);
-  // New boxes for the same primitives, in the same order: refits without changing the tree.
-  void refit(std::vector<Aabb> leaf_boxes);
+  // One box per primitive (a triangle's swept, padded box, say). Builds the tree; with two
+  // threads or more a large tree's two halves are built side by side (the same tree).
+  explicit Bvh(const std::vector<Aabb>& leaf_boxes, int threads = 1);
+  // New boxes for the same primitives, in the same order: refits without changing the tree
+  // (a large tree's two halves side by side with two threads or more, the same boxes).
+  void refit(std::vector<Aabb> leaf_boxes, int threads = 1);
   const std::vector<Aabb>& leaf_boxes() const { return leaf_box_; }
 
   // Calls f(i, j) with i < j for every pair of primitives of this tree whose boxes overlap.
@@ -146,7 +148,17 @@ class Bvh {
     int32_t left = -1, right = -1;  // children; -1 for a leaf
     int32_t first = -1, last = -1;  // the first and last primitives under the node, in leaf order
   };
-  int32_t build(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
+  // Trees of fewer primitives are built and refit on one thread: below this the work is a few
+  // tens of microseconds, what starting a second thread costs.
+  static constexpr std::size_t kParallelPrimitives = 2048;
+  // Splits prims[begin, end) at its median along the longest axis of the centres: the middle.
+  static std::size_t split(std::vector<int32_t>& prims, std::size_t begin, std::size_t end, const std::vector<Vec3>& centres);
+  // The subtree over prims[begin, end), its nodes appended to `out` depth first (children
+  // numbered from out's size); returns its root's index in `out`.
+  int32_t build(std::vector<Node>& out, int32_t& leaves, std::vector<int32_t>& prims, std::size_t begin, std::size_t end,
+                const std::vector<Vec3>& centres) const;
+  // Refits nodes [first, last) bottom-up: a whole subtree, whose children follow their parent.
+  void refit_nodes(int32_t first, int32_t last);
   void measure_looseness();
   // Simultaneous descent from node a of this tree and the root of `other`: pairs whose boxes
   // overlap (this tree's grown by pad); with `later`, only pairs whose `other` primitive comes
@@ -224,13 +236,13 @@ void pairs_by_subtree(const Bvh& tree, const std::vector<const Bvh*>& others, do
 class RefitBvh {
  public:
   explicit RefitBvh(double max_loosening = 1.2) : max_loosening_(max_loosening) {}
-  const Bvh& update(std::vector<Aabb> leaf_boxes) {
+  const Bvh& update(std::vector<Aabb> leaf_boxes, int threads = 1) {
     if (tree_ && tree_->size() == static_cast<int32_t>(leaf_boxes.size())) {
-      tree_->refit(std::move(leaf_boxes));
+      tree_->refit(std::move(leaf_boxes), threads);
       if (tree_->looseness() <= max_loosening_ * built_looseness_) return *tree_;
       leaf_boxes = tree_->leaf_boxes();
     }
-    tree_ = std::make_unique<Bvh>(leaf_boxes);
+    tree_ = std::make_unique<Bvh>(leaf_boxes, threads);
     built_looseness_ = tree_->looseness();
     return *tree_;
   }

@@ -2,6 +2,7 @@
 #include "physics/assembly.hpp"
 
 #include <algorithm>
+#include <array>
 #include <memory>
 #include <span>
 
@@ -27,13 +28,13 @@ VecN<N> gather(const Eigen::VectorXd& v, const std::array<int32_t, N / 3>& nodes
 
 }  // namespace
 
-SystemAssembler::SystemAssembler(const ClothModel& model) : model_(model) {
-  const int32_t slots = build_neighbours();
+SystemAssembler::SystemAssembler(const ClothModel& model, int threads) : model_(model) {
+  const int32_t slots = build_neighbours(threads);
   build_pattern(slots);
-  build_gather_lists(slots);
+  build_gather_lists(slots, threads);
 }
 
-int32_t SystemAssembler::build_neighbours() {
+int32_t SystemAssembler::build_neighbours(int threads) {
   const ClothModel& model = model_;
   const int32_t n = model.num_nodes;
   // Each node's neighbours (itself and the nodes it shares an element with) in one flat array:
@@ -56,16 +57,26 @@ int32_t SystemAssembler::build_neighbours() {
   };
   for (const auto& f : model.face_nodes) link(f);
   for (const auto& b : model.bend_nodes) link(b);
-  int32_t packed = 0;
-  for (int32_t i = 0; i < n; ++i) {
+  std::vector<int32_t> kept(static_cast<std::size_t>(n));
+  auto sort_run = [&](int32_t i) {
     const auto begin = slot_node_.begin() + slot_start_[static_cast<std::size_t>(i)];
     const auto end = slot_node_.begin() + slot_start_[static_cast<std::size_t>(i) + 1];
     std::sort(begin, end);
-    const auto last = std::unique(begin, end);
+    kept[static_cast<std::size_t>(i)] = static_cast<int32_t>(std::unique(begin, end) - begin);
+  };
+  if (threads > 1) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int32_t i = 0; i < n; ++i) sort_run(i);
+  } else {
+    for (int32_t i = 0; i < n; ++i) sort_run(i);
+  }
+  int32_t packed = 0;
+  for (int32_t i = 0; i < n; ++i) {
+    const auto begin = slot_node_.begin() + slot_start_[static_cast<std::size_t>(i)];
     const auto to = slot_node_.begin() + packed;
-    if (to != begin) std::copy(begin, last, to);  // packs forward: `to` is never after `begin`
+    if (to != begin) std::copy(begin, begin + kept[static_cast<std::size_t>(i)], to);  // packs forward: `to` is never after `begin`
     slot_start_[static_cast<std::size_t>(i)] = packed;
-    packed += static_cast<int32_t>(last - begin);
+    packed += kept[static_cast<std::size_t>(i)];
   }
   slot_start_[static_cast<std::size_t>(n)] = packed;
   slot_node_.resize(static_cast<std::size_t>(packed));
@@ -94,7 +105,7 @@ void SystemAssembler::build_pattern(int32_t slots) {
 }
 
 // Gather lists: which element blocks and vectors land in each slot and node.
-void SystemAssembler::build_gather_lists(int32_t slots) {
+void SystemAssembler::build_gather_lists(int32_t slots, int threads) {
   const ClothModel& model = model_;
   const int32_t n = model.num_nodes;
   const auto nf = static_cast<int64_t>(model.face_nodes.size());
@@ -112,17 +123,26 @@ void SystemAssembler::build_gather_lists(int32_t slots) {
     for (int64_t e = 0; e < ne; ++e)
       visit(model.bend_nodes[static_cast<std::size_t>(e)], nf * kFaceMat + e * kBendMat, nf * kFaceVec + e * kBendVec, 12);
   };
-  std::vector<int32_t> element_slots;  // slot of every block, in visiting order
-  element_slots.reserve(static_cast<std::size_t>(9 * nf + 16 * ne));
+  // The slot of every block, in visiting order (9 a face, then 16 a bending element), looked up
+  // in parallel.
+  std::vector<int32_t> element_slots(static_cast<std::size_t>(9 * nf + 16 * ne));
+  auto find_slots = [&](const auto& nodes, int32_t* out) {
+    for (int32_t a : nodes)
+      for (int32_t b : nodes) *out++ = slot_of(a, b);
+  };
+  auto find_element_slots = [&](int64_t k) {
+    if (k < nf) find_slots(model.face_nodes[static_cast<std::size_t>(k)], element_slots.data() + 9 * k);
+    else find_slots(model.bend_nodes[static_cast<std::size_t>(k - nf)], element_slots.data() + 9 * nf + 16 * (k - nf));
+  };
+  if (threads > 1) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int64_t k = 0; k < nf + ne; ++k) find_element_slots(k);
+  } else {
+    for (int64_t k = 0; k < nf + ne; ++k) find_element_slots(k);
+  }
+  for (const int32_t s : element_slots) ++slot_contrib_start_[static_cast<std::size_t>(s) + 1];
   for_each_element([&](const auto& nodes, int64_t, int64_t, int32_t) {
-    for (int32_t a : nodes) {
-      ++node_force_start_[static_cast<std::size_t>(a) + 1];
-      for (int32_t b : nodes) {
-        const int32_t s = slot_of(a, b);
-        element_slots.push_back(s);
-        ++slot_contrib_start_[static_cast<std::size_t>(s) + 1];
-      }
-    }
+    for (int32_t a : nodes) ++node_force_start_[static_cast<std::size_t>(a) + 1];
   });
   for (int32_t s = 0; s < slots; ++s) slot_contrib_start_[static_cast<std::size_t>(s) + 1] += slot_contrib_start_[static_cast<std::size_t>(s)];
   for (int32_t i = 0; i < n; ++i) node_force_start_[static_cast<std::size_t>(i) + 1] += node_force_start_[static_cast<std::size_t>(i)];
@@ -238,11 +258,17 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
 
 void SystemAssembler::add_contacts(const std::vector<ContactTerm>& terms) {
   double* val = a_.valuePtr();
+  const auto* outer = a_.outerIndexPtr();
   for (const ContactTerm& t : terms) {
+    // Each block's slot looked up once (block (i, j) is column j's neighbour i).
+    std::array<int32_t, 16> slot{};
     bool coupled = true;
-    for (int32_t i : t.nodes)
-      for (int32_t j : t.nodes)
-        if (i >= 0 && j >= 0 && slot_of(i, j) < 0) coupled = false;
+    for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t b = 0; b < 4; ++b)
+        if (t.nodes[a] >= 0 && t.nodes[b] >= 0) {
+          slot[4 * a + b] = slot_of(t.nodes[a], t.nodes[b]);
+          if (slot[4 * a + b] < 0) coupled = false;
+        }
     for (std::size_t a = 0; a < 4; ++a) {
       const int32_t i = t.nodes[a];
       if (i < 0) continue;
@@ -251,8 +277,9 @@ void SystemAssembler::add_contacts(const std::vector<ContactTerm>& terms) {
         const int32_t j = t.nodes[b];
         if (j < 0 || (!coupled && j != i)) continue;
         const Mat3 block = t.weights[a] * t.weights[b] * t.block;
+        const int64_t k = slot[4 * a + b] - slot_start_[static_cast<std::size_t>(j)];
         for (int c = 0; c < 3; ++c)
-          for (int r = 0; r < 3; ++r) val[value_index(i, j, r, c)] += block(r, c);
+          for (int r = 0; r < 3; ++r) val[outer[3 * j + c] + 3 * k + r] += block(r, c);
       }
     }
   }

@@ -42,7 +42,8 @@ struct VelocityConstraint {
 
 class SystemAssembler {
  public:
-  explicit SystemAssembler(const ClothModel& model);
+  // `threads`: for building the pattern (the same pattern on any number).
+  explicit SystemAssembler(const ClothModel& model, int threads = 1);
 
   void assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const StepParams& p);
   // Adds contact terms after assemble(). A term whose movable nodes are all neighbours in the
@@ -61,9 +62,9 @@ class SystemAssembler {
  private:
   // The constructor's parts: each node's neighbours (returns the number of slots), the matrix's
   // pattern, and the lists that gather element blocks into slots and element vectors into nodes.
-  int32_t build_neighbours();
+  int32_t build_neighbours(int threads);
   void build_pattern(int32_t slots);
-  void build_gather_lists(int32_t slots);
+  void build_gather_lists(int32_t slots, int threads);
   struct Contribution {
     int64_t offset;  // of the local matrix's 3x3 block (a, b), column-major with leading dim ld
     int32_t ld;

@@ -1,6 +1,7 @@
 #include "physics/block_diagonal_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <omp.h>
@@ -45,18 +46,19 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
   std::stable_sort(blocks_.begin(), blocks_.end(), [](const Block& p, const Block& q) { return p.size > q.size; });
   LinearSolverParams inner = params_;
   if (blocks_.size() > 1) inner.threads = 1;  // the blocks are the parallelism
-  std::vector<std::pair<Eigen::Index, std::pair<int, int>>> units;
-  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+  // Each block analyzed on its own (its own CHOLMOD workspace; METIS orders one at a time and
+  // reseeds for each), the blocks side by side, largest first.
+  std::vector<std::array<Eigen::Index, 2>> halves(blocks_.size(), {-1, -1});
+  auto analyze_block = [&](std::size_t k) {
     Block& block = blocks_[k];
     if (kind_ == LinearSolverKind::Cholmod && a.isCompressed() && block.size >= kMinSeparatedUnknowns) {
       block.separated = std::make_unique<SeparatedCholesky>();
-      if (block.separated->analyze(a, block.start, block.size)) {
-        for (int h = 0; h < 2; ++h) units.push_back({block.separated->half_unknowns(h), {static_cast<int>(k), h}});
-        continue;
+      if (block.separated->analyze(a, block.start, block.size, inner.threads)) {
+        halves[k] = {block.separated->half_unknowns(0), block.separated->half_unknowns(1)};
+        return;
       }
       block.separated.reset();
     }
-    units.push_back({block.size, {static_cast<int>(k), -1}});
     block.solver = make_linear_solver(kind_, inner);
     if (blocks_.size() > 1) {
       copy_pattern(a, block);
@@ -64,6 +66,21 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
       block.solver->analyze(block.a);
     } else {
       block.solver->analyze(a);
+    }
+  };
+  // (No one-thread region around a single block: CHOLMOD's own would then be a nested team.)
+  if (blocks_.size() > 1 && params_.threads > 1) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
+    for (std::size_t k = 0; k < blocks_.size(); ++k) analyze_block(k);
+  } else {
+    for (std::size_t k = 0; k < blocks_.size(); ++k) analyze_block(k);
+  }
+  std::vector<std::pair<Eigen::Index, std::pair<int, int>>> units;
+  for (std::size_t k = 0; k < blocks_.size(); ++k) {
+    if (blocks_[k].separated) {
+      for (int h = 0; h < 2; ++h) units.push_back({halves[k][static_cast<std::size_t>(h)], {static_cast<int>(k), h}});
+    } else {
+      units.push_back({blocks_[k].size, {static_cast<int>(k), -1}});
     }
   }
   std::stable_sort(units.begin(), units.end(), [](const auto& p, const auto& q) { return p.first > q.first; });

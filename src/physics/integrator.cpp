@@ -10,7 +10,7 @@
 namespace vdc {
 
 ImplicitIntegrator::ImplicitIntegrator(const ClothModel& model, LinearSolverKind kind, const LinearSolverParams& params)
-    : assembler_(model), solver_(std::make_unique<BlockDiagonalSolver>(kind, params)) {
+    : assembler_(model, params.threads), solver_(std::make_unique<BlockDiagonalSolver>(kind, params)) {
   solver_->analyze(assembler_.matrix());
   dv_.setZero(3 * static_cast<int64_t>(model.num_nodes));
 }

@@ -4,6 +4,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "physics/cholmod_use.hpp"
@@ -115,7 +116,7 @@ Eigen::Index SeparatedCholesky::half_unknowns(int h) const {
   return halves_[static_cast<std::size_t>(h)] ? halves_[static_cast<std::size_t>(h)]->m.rows() : 0;
 }
 
-bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen::Index size) {
+bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen::Index size, int threads) {
   start_ = start;
   size_ = size;
   separator_.clear();
@@ -145,8 +146,20 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
   for (std::size_t j = 0; j < n; ++j)
     if (part[j] == 2)
       for (int r = 0; r < 3; ++r) separator_.push_back(3 * static_cast<Eigen::Index>(j) + r);
-  for (int h = 0; h < 2; ++h)
-    if (!halves_[static_cast<std::size_t>(h)]->analyze(a, start, h, part, col_start, rows, separator_)) return false;
+  // The halves are independent (each its own CHOLMOD workspace; METIS orders one at a time and
+  // reseeds for each): side by side with two threads.
+  // (No one-thread region on one thread: CHOLMOD's own would then be a nested team.)
+  std::array<bool, 2> analyzed{};
+  auto analyze_half = [&](int h) {
+    analyzed[static_cast<std::size_t>(h)] = halves_[static_cast<std::size_t>(h)]->analyze(a, start, h, part, col_start, rows, separator_);
+  };
+  if (threads >= 2) {
+#pragma omp parallel for schedule(static, 1) num_threads(2)
+    for (int h = 0; h < 2; ++h) analyze_half(h);
+  } else {
+    for (int h = 0; h < 2; ++h) analyze_half(h);
+  }
+  if (!analyzed[0] || !analyzed[1]) return false;
   const Half& first = *halves_[0];
   for (Eigen::Index c = first.interior; c < first.m.cols(); ++c)
     for (auto k = first.m.outerIndexPtr()[c]; k < first.m.outerIndexPtr()[c + 1]; ++k)

@@ -29,7 +29,7 @@ class SeparatedCholesky {
   // couples to them) and analyzes both halves. False, and nothing to use, when the nodes do not
   // split into two halves of at least a fifth of them each with a separator of at most a tenth
   // of them and at most 3 sqrt(n) nodes.
-  bool analyze(const SparseMatrix& a, Eigen::Index start, Eigen::Index size);
+  bool analyze(const SparseMatrix& a, Eigen::Index start, Eigen::Index size, int threads = 1);
   // Factors half h (0 or 1) with `a`'s current values (the pattern analyzed). The two halves may
   // be factored at once on two threads.
   bool factor_half(const SparseMatrix& a, int h);

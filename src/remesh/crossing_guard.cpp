@@ -37,8 +37,8 @@ bool shares_node(const Mesh& mesh, FaceId f, const std::array<NodeId, 3>& nodes)
 
 }  // namespace
 
-StandingSurfaces::StandingSurfaces(std::vector<Triangle> t, std::vector<int> o)
-    : triangles(std::move(t)), owners(std::move(o)), tree(boxes_of(triangles)) {}
+StandingSurfaces::StandingSurfaces(std::vector<Triangle> t, std::vector<int> o, int threads)
+    : triangles(std::move(t)), owners(std::move(o)), tree(boxes_of(triangles), threads) {}
 
 CrossingGuard::CrossingGuard(const Mesh& mesh, const StandingSurfaces& standing, int self)
     : mesh_(mesh), standing_(standing), self_(self) {

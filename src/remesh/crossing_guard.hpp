@@ -17,7 +17,8 @@ namespace vdc {
 // obstacles' faces and every garment's, with the garment each belongs to (-1: an obstacle). Built
 // once a frame and shared by the garments remeshed side by side.
 struct StandingSurfaces {
-  StandingSurfaces(std::vector<Triangle> triangles, std::vector<int> owners);
+  // `threads`: for building the hierarchy.
+  StandingSurfaces(std::vector<Triangle> triangles, std::vector<int> owners, int threads = 1);
   std::vector<Triangle> triangles;
   std::vector<int> owners;
   Bvh tree;

@@ -138,18 +138,44 @@ Mat2 clamp_sizing(const Mat2& m, const SizingParams& p) {
   return eig.eigenvectors() * l.asDiagonal() * eig.eigenvectors().transpose();
 }
 
-void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier, const std::vector<ObstaclePlane>& planes) {
+namespace {
+
+// The live handles of a range, in order.
+template <class Range>
+auto listed(const Range& range) {
+  std::vector<std::decay_t<decltype(*range.begin())>> items;
+  for (auto h : range) items.push_back(h);
+  return items;
+}
+
+// body(items[i]) for every i, on `threads` threads (a plain loop on one: no region to nest in).
+template <class Handle, class F>
+void for_each_of(const std::vector<Handle>& items, int threads, F&& body) {
+  const auto n = static_cast<int64_t>(items.size());
+  if (threads > 1) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int64_t i = 0; i < n; ++i) body(items[static_cast<std::size_t>(i)]);
+  } else {
+    for (int64_t i = 0; i < n; ++i) body(items[static_cast<std::size_t>(i)]);
+  }
+}
+
+}  // namespace
+
+void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier, const std::vector<ObstaclePlane>& planes,
+                    int threads) {
   auto& face = mesh.face_attrs().get_or_add<Mat2>(kFaceSizingAttr, Mat2::Zero());
   const std::vector<Vec3> normals = node_normals(mesh);
   std::vector<Mat2> motion(modifier ? static_cast<std::size_t>(mesh.face_capacity()) : 0, Mat2::Zero());
   const bool keeps_compression = modifier && modifier->keeps_compression();
-  for (FaceId f : mesh.faces()) {
+  const std::vector<FaceId> faces = listed(mesh.faces());
+  for_each_of(faces, threads, [&](FaceId f) {
     const SizingCriteria c = sizing_criteria(mesh, f, normals, p);
     face[f] = clamp_sizing(largest_criterion(c, mesh, f, planes), p);
     if (modifier)
       motion[static_cast<std::size_t>(f.idx)] =
           motion_sizing(c, p, keeps_compression && (planes.empty() || !held(mesh, f, planes)));
-  }
+  });
   if (modifier) {
     const std::vector<Mat2> before = face.raw();
     modifier->modify(mesh, motion, face);
@@ -158,17 +184,18 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
     // so a coarsened garment cannot cut into the body it hangs on.
     auto& coarsening = mesh.face_attrs().get_or_add<double>(kCoarseningAttr, 1.0);
     auto& fold_led = mesh.face_attrs().get_or_add<double>(kFoldLedAttr, 0.0);
-    for (FaceId f : mesh.faces()) {
+    for_each_of(faces, threads, [&](FaceId f) {
       const Mat2& physical = before[static_cast<std::size_t>(f.idx)];
       if (face[f] != physical) face[f] = clamp_sizing(planes.empty() ? face[f] : tensor_max(face[f], obstacle_metric(mesh, f, planes)), p);
       const double against_physics = face[f] == physical ? 1.0 : metric_ratio(physical, face[f]);
       const double against_folds = modifier->fold_coarsening(mesh, f, face[f]);
       coarsening[f] = std::max(against_physics, against_folds);
       fold_led[f] = against_folds > against_physics ? 1.0 : 0.0;
-    }
+    });
   }
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());
-  for (VertId v : mesh.verts()) {
+  const std::vector<VertId> verts = listed(mesh.verts());
+  for_each_of(verts, threads, [&](VertId v) {
     Mat2 sum = Mat2::Zero();
     double area = 0;
     for (FaceId f : mesh.vert_faces(v)) {
@@ -178,7 +205,7 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
     }
     vert[v] = area > 0 ? Mat2(sum / area) : Mat2::Zero();
     if (p.resolution_scale != 1.0) vert[v] /= p.resolution_scale * p.resolution_scale;
-  }
+  });
 }
 
 void set_uniform_sizing(Mesh& mesh, double h) {

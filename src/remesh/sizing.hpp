@@ -93,9 +93,10 @@ double metric_ratio(const Mat2& m, const Mat2& in);
 
 // Computes face tensors (kFaceSizingAttr), lets `modifier` change them (then also writing
 // kCoarseningAttr), and averages them onto verts by material area (kSizingAttr, read by remesh()),
-// divided there by p.resolution_scale^2.
+// divided there by p.resolution_scale^2. Each face and vert on its own, on `threads` threads (the
+// same field on any number).
 void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier = nullptr,
-                    const std::vector<ObstaclePlane>& planes = {});
+                    const std::vector<ObstaclePlane>& planes = {}, int threads = 1);
 
 // A constant isotropic field of size h on every vert (the fixed-resolution baseline).
 void set_uniform_sizing(Mesh& mesh, double h);

@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "core/bvh.hpp"
 #include "core/error.hpp"
 #include "core/surface_repair.hpp"
 #include "scene/model_file.hpp"

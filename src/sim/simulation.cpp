@@ -166,7 +166,7 @@ void Simulation::remesh_garments(FrameStats& stats) {
                                            occluders_at(garment_meshes, garment_x, static_cast<int>(c)), scene_.view, options_.threads));
     stats.view_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tv).count();
   }
-  const StandingSurfaces standing(std::move(triangles), std::move(owners));
+  const StandingSurfaces standing(std::move(triangles), std::move(owners), options_.threads);
   const std::size_t count = garments_.size();
   std::vector<std::vector<ObstaclePlane>> planes(count);
   std::vector<std::unique_ptr<ViewSizing>> views(count);
@@ -293,13 +293,16 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
   for (const Mesh& mesh : garments_) faces.push_back(mesh.num_faces());
   std::vector<RemeshStats> remeshed(count);
   const int team = std::max(1, std::min<int>(options_.threads, static_cast<int>(count)));
+  // One garment alone has the threads for its sizing (not inside a team: a region there would
+  // be a nested one).
+  const int inner = team == 1 ? options_.threads : 1;
   for_each_in_order(largest_first(faces), team, [&](int k) {
     const auto gi = static_cast<std::size_t>(k);
     Mesh& mesh = garments_[gi];
     if (views[gi]) {
       record_view(mesh, *views[gi]);
     }
-    compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi]);
+    compute_sizing(mesh, scene_.remeshing, views[gi].get(), planes[gi], inner);
     if (views[gi]) {
       // A face the camera lets be coarser than its physics asks cannot form the wrinkles that
       // would take up its compression (membrane.hpp); where the folds too fine for the image led,

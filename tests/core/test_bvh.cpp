@@ -150,6 +150,33 @@ TEST(Bvh, PairsBetweenTreesAndBoxQueriesMatchBruteForce) {
   EXPECT_EQ(hits, brute);
 }
 
+// A tree large enough to be built and refit in two halves side by side is the one-thread tree:
+// the same pairs met in the same order, the same root box and looseness, before and after a refit.
+TEST(Bvh, TwoThreadsBuildAndRefitTheOneThreadTree) {
+  std::mt19937 rng(17);
+  std::vector<Aabb> boxes = random_boxes(rng, 5000, 3.0);
+  Bvh one(boxes, 1), two(boxes, 2);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<std::pair<int32_t, int32_t>> met_one, met_two;
+    one.self_pairs([&](int32_t i, int32_t j) { met_one.emplace_back(i, j); });
+    two.self_pairs([&](int32_t i, int32_t j) { met_two.emplace_back(i, j); });
+    EXPECT_FALSE(met_one.empty());
+    EXPECT_EQ(met_one, met_two) << "pass " << pass;
+    EXPECT_EQ(one.subtrees(16), two.subtrees(16));
+    EXPECT_EQ(one.leaves(), two.leaves());
+    EXPECT_EQ(one.root_box().lo, two.root_box().lo);
+    EXPECT_EQ(one.root_box().hi, two.root_box().hi);
+    EXPECT_EQ(one.looseness(), two.looseness()) << "pass " << pass;
+    for (auto& b : boxes) {  // drift, one side more than the other
+      const Vec3 d(0.2 * std::sin(b.lo.y() * 3), 0.1 * b.lo.x(), 0.0);
+      b.lo += d;
+      b.hi += d;
+    }
+    one.refit(boxes, 1);
+    two.refit(boxes, 2);
+  }
+}
+
 // Looseness is the nodes' surface area over the primitives': two unit cubes a unit apart make a
 // root of 3 x 1 x 1 (half area 7) over primitives of half area 3 each.
 TEST(Bvh, LoosenessIsNodeAreaOverPrimitiveArea) {

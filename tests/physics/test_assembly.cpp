@@ -213,6 +213,26 @@ TEST(Assembly, BendingForcesAndStiffnessAreTheTotalEnergysDerivatives) {
   expect_derivatives_of_the_energy(model, bent, rest);
 }
 
+// The pattern and gather lists built on two threads are the one-thread ones: the same matrix and
+// forces, value for value.
+TEST(Assembly, TwoThreadsBuildTheSystemOneThreadBuilds) {
+  TwoSheets s;
+  StepParams p;
+  p.h = 0.004;
+  p.gravity = Vec3(0, -9.8, 0);
+  SystemAssembler one(s.model, 1), two(s.model, 2);
+  one.assemble(s.x, s.v, p);
+  two.assemble(s.x, s.v, p);
+  const SparseMatrix& a = one.matrix();
+  const SparseMatrix& b = two.matrix();
+  ASSERT_EQ(a.nonZeros(), b.nonZeros());
+  ASSERT_EQ(a.cols(), b.cols());
+  EXPECT_TRUE(std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1, b.outerIndexPtr()));
+  EXPECT_TRUE(std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr()));
+  EXPECT_TRUE(std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr()));
+  EXPECT_EQ(one.rhs(), two.rhs());
+}
+
 TEST(Assembly, PatternHoldsExactlyTheNodePairsThatShareAnElement) {
   TwoSheets s;
   SystemAssembler assembler(s.model);

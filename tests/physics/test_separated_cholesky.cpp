@@ -80,6 +80,22 @@ TEST(SeparatedCholesky, TheBlockSolverSplitsLargeBlocksOnlyAndGivesTheSameBitsOn
     if (first.size() == 0) first = x;
     EXPECT_EQ((x - first).cwiseAbs().maxCoeff(), 0.0) << threads << " threads";
   }
+  // One block alone: its halves analyzed side by side on two threads, the same bits.
+  SparseMatrix sheet = grid_system(50);
+  sheet.makeCompressed();
+  const Eigen::VectorXd load = cosine_load(sheet.rows());
+  Eigen::VectorXd alone;
+  for (int threads : {1, 2}) {
+    LinearSolverParams p;
+    p.threads = threads;
+    BlockDiagonalSolver solver(LinearSolverKind::Cholmod, p);
+    solver.analyze(sheet);
+    EXPECT_EQ(solver.separated_blocks(), 1u);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(load.size());
+    ASSERT_TRUE(solver.solve(sheet, load, x).ok) << threads;
+    if (alone.size() == 0) alone = x;
+    EXPECT_EQ((x - alone).cwiseAbs().maxCoeff(), 0.0) << threads << " threads";
+  }
   // Below kMinSeparatedUnknowns, or with another solver, nothing is split.
   BlockDiagonalSolver small(LinearSolverKind::Cholmod, {});
   small.analyze(grid_system(40));  // 4,800 unknowns

@@ -175,6 +175,32 @@ TEST(Sizing, TheCoarseningRecordedIsAlsoAgainstTheFoldsAModifierCannotShow) {
 }
 
 
+// Sizing on two threads is the one-thread field, tensor for tensor: a curved, sheared sheet
+// under a modifier (faces, coarsening and verts).
+TEST(Sizing, TwoThreadsComputeTheOneThreadField) {
+  SizingParams p;
+  const FoldingModifier quarter(0.25, 2.0);
+  std::vector<Mesh> meshes;
+  for (int threads : {1, 2}) {
+    Mesh mesh = build_mesh(make_grid(1, 1, 24, 24));
+    for (NodeId n : mesh.nodes()) {
+      const Vec3 x = mesh.x(n);
+      mesh.x(n) = Vec3(x.x(), 0.05 * std::sin(7 * x.x()) * std::cos(5 * x.z()), x.z());
+      mesh.v(n) = Vec3(0, 5 * x.x() * x.z(), 0);
+    }
+    compute_sizing(mesh, p, &quarter, {}, threads);
+    meshes.push_back(std::move(mesh));
+  }
+  const Mesh& one = meshes[0];
+  const Mesh& two = meshes[1];
+  EXPECT_EQ(one.face_attrs().get<Mat2>(kFaceSizingAttr).raw(), two.face_attrs().get<Mat2>(kFaceSizingAttr).raw());
+  EXPECT_EQ(one.face_attrs().get<double>(kCoarseningAttr).raw(), two.face_attrs().get<double>(kCoarseningAttr).raw());
+  EXPECT_EQ(one.vert_attrs().get<Mat2>(kSizingAttr).raw(), two.vert_attrs().get<Mat2>(kSizingAttr).raw());
+  // Not a uniform field: the comparison above has something to compare.
+  const auto& verts = one.vert_attrs().get<Mat2>(kSizingAttr).raw();
+  EXPECT_NE(verts.front(), verts[verts.size() / 2]);
+}
+
 // A modifier that gives each face its own isotropic tensor, inside the clamp (1/0.2^2 to 1/0.01^2).
 class PerFaceModifier final : public FaceSizingModifier {
  public:
