@@ -108,35 +108,39 @@ void Bvh::refit(std::vector<Aabb> leaf_boxes, int threads) {
   leaf_box_ = std::move(leaf_boxes);
   if (leaf_box_.empty()) return;
   const auto count = static_cast<int32_t>(nodes_.size());
-  const bool halves = threads >= 2 && leaf_box_.size() >= kParallelPrimitives && nodes_.front().left >= 0;
-  // Children come after their parent (the build numbers nodes depth first), so a backward pass
-  // over a subtree's nodes refits it bottom-up; the root's two subtrees are [1, right) and
-  // [right, count).
-  auto rank_boxes = [&](int64_t r) {
-    ranked_box_[static_cast<std::size_t>(r)] = leaf_box_[static_cast<std::size_t>(order_[static_cast<std::size_t>(r)])];
-  };
   const auto ranked = static_cast<int64_t>(order_.size());
-  if (halves) {
+  auto rank_box = [&](int64_t r) -> const Aabb& {
+    return ranked_box_[static_cast<std::size_t>(r)] = leaf_box_[static_cast<std::size_t>(order_[static_cast<std::size_t>(r)])];
+  };
+  double primitives = 0, nodes = 0;
+  if (threads < 2 || leaf_box_.size() < kParallelPrimitives || nodes_.front().left < 0) {
+    // Children come after their parent (the build numbers nodes depth first), so one backward
+    // pass refits bottom-up, and measures the looseness on the way.
+    for (int64_t r = 0; r < ranked; ++r) primitives += half_area(rank_box(r));
+    for (int32_t i = count - 1; i >= 0; --i) {
+      refit_nodes(i, i + 1);
+      nodes += half_area(nodes_[static_cast<std::size_t>(i)].box);
+    }
+  } else {
+    // The root's two subtrees, [1, right) and [right, count), side by side, then the root; the
+    // looseness summed afterwards in the one-thread order.
+    const int32_t right = nodes_.front().right;
 #pragma omp parallel num_threads(2)
     {
 #pragma omp for schedule(static)
-      for (int64_t r = 0; r < ranked; ++r) rank_boxes(r);
+      for (int64_t r = 0; r < ranked; ++r) rank_box(r);
 #pragma omp sections
       {
 #pragma omp section
-        refit_nodes(1, nodes_.front().right);
+        refit_nodes(1, right);
 #pragma omp section
-        refit_nodes(nodes_.front().right, count);
+        refit_nodes(right, count);
       }
     }
-  } else {
-    for (int64_t r = 0; r < ranked; ++r) rank_boxes(r);
+    refit_nodes(0, 1);
+    for (const Aabb& b : ranked_box_) primitives += half_area(b);
+    for (int32_t i = count - 1; i >= 0; --i) nodes += half_area(nodes_[static_cast<std::size_t>(i)].box);
   }
-  refit_nodes(0, halves ? 1 : count);
-  // The looseness summed in one order whatever the threads.
-  double primitives = 0, nodes = 0;
-  for (const Aabb& b : ranked_box_) primitives += half_area(b);
-  for (auto i = static_cast<int64_t>(count) - 1; i >= 0; --i) nodes += half_area(nodes_[static_cast<std::size_t>(i)].box);
   looseness_ = primitives > 0 ? nodes / primitives : nodes;
 }
 
