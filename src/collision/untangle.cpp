@@ -95,17 +95,29 @@ class Untangler {
   // One pass over all triangle pairs: counts intersecting pairs and accumulates the contour
   // gradient (cloth-cloth) and the pushes out of obstacles.
   std::pair<int, int> detect() {
-    std::vector<Aabb> boxes(faces_.size());
-    for (std::size_t f = 0; f < faces_.size(); ++f)
-      for (int32_t v : faces_[f]) boxes[f].grow(at(v));
-    const Bvh tree(boxes);
-    int cloth_pairs = 0, obstacle_pairs = 0;
+    const std::vector<Aabb> boxes = leaf_boxes(faces_.size(), params_.threads, [&](std::size_t f) {
+      Aabb box;
+      for (int32_t v : faces_[f]) box.grow(at(v));
+      return box;
+    });
+    const Bvh tree(boxes, params_.threads);
+    // The candidate pairs in the hierarchy's order, tested for a crossing in parallel (a pure
+    // test), then those that cross taken in that order: the gradient and the pushes add up as
+    // on one thread.
+    std::vector<std::pair<int32_t, int32_t>> cloth;
     tree.self_pairs([&](int32_t fa, int32_t fb) {
       const auto &A = faces_[static_cast<std::size_t>(fa)], &B = faces_[static_cast<std::size_t>(fb)];
       for (int32_t v : A)
         if (v == B[0] || v == B[1] || v == B[2]) return;
-      if (cloth_contour(A, B)) ++cloth_pairs;
+      cloth.emplace_back(fa, fb);
     });
+    const std::vector<char> cloth_crossing = flags(cloth.size(), [&](std::size_t k) {
+      return cloth_crossings(faces_[static_cast<std::size_t>(cloth[k].first)], faces_[static_cast<std::size_t>(cloth[k].second)]);
+    });
+    int cloth_pairs = 0, obstacle_pairs = 0;
+    for (std::size_t k = 0; k < cloth.size(); ++k)
+      if (cloth_crossing[k] && cloth_contour(faces_[static_cast<std::size_t>(cloth[k].first)], faces_[static_cast<std::size_t>(cloth[k].second)]))
+        ++cloth_pairs;
     // The pairs with each obstacle in index order: its hierarchy may be the collider's, kept
     // from step to step, or one built afresh (after a resumption), which meet them in different
     // orders, and the pushes add up in this one.
@@ -114,10 +126,54 @@ class Untangler {
       std::vector<std::pair<int32_t, int32_t>> pairs;
       tree.pairs_with(*obstacle_tree_[o], [&](int32_t fc, int32_t fo) { pairs.emplace_back(fc, fo); });
       std::sort(pairs.begin(), pairs.end());
-      for (const auto& [fc, fo] : pairs)
-        if (obstacle_push(faces_[static_cast<std::size_t>(fc)], obstacles_[o].faces[static_cast<std::size_t>(fo)], ox)) ++obstacle_pairs;
+      const std::vector<char> crossing = flags(pairs.size(), [&](std::size_t k) {
+        return obstacle_crosses(faces_[static_cast<std::size_t>(pairs[k].first)], obstacles_[o].faces[static_cast<std::size_t>(pairs[k].second)], ox);
+      });
+      for (std::size_t k = 0; k < pairs.size(); ++k)
+        if (crossing[k] &&
+            obstacle_push(faces_[static_cast<std::size_t>(pairs[k].first)], obstacles_[o].faces[static_cast<std::size_t>(pairs[k].second)], ox))
+          ++obstacle_pairs;
     }
     return {cloth_pairs, obstacle_pairs};
+  }
+
+  // test(k) for k in [0, n), on the threads.
+  template <class Test>
+  std::vector<char> flags(std::size_t n, Test&& test) const {
+    std::vector<char> out(n, 0);
+    const auto count = static_cast<int64_t>(n);
+    if (params_.threads > 1) {
+#pragma omp parallel for schedule(static) num_threads(params_.threads)
+      for (int64_t k = 0; k < count; ++k) out[static_cast<std::size_t>(k)] = test(static_cast<std::size_t>(k)) ? 1 : 0;
+    } else {
+      for (int64_t k = 0; k < count; ++k) out[static_cast<std::size_t>(k)] = test(static_cast<std::size_t>(k)) ? 1 : 0;
+    }
+    return out;
+  }
+
+  // Whether an edge of either face crosses the other as cloth_contour finds crossings.
+  bool cloth_crossings(const std::array<int32_t, 3>& A, const std::array<int32_t, 3>& B) const {
+    auto any_through = [&](const std::array<int32_t, 3>& E, const std::array<int32_t, 3>& F) {
+      for (int i = 0; i < 3; ++i) {
+        const int32_t p = E[static_cast<std::size_t>(i)], q = E[static_cast<std::size_t>((i + 1) % 3)];
+        if (edge_through_face({p, q}, F, at(p), at(q), at(F[0]), at(F[1]), at(F[2]))) return true;
+      }
+      return false;
+    };
+    return any_through(A, B) || any_through(B, A);
+  }
+
+  // Whether obstacle_push finds a crossing of cloth face C and obstacle face O.
+  static bool obstacle_crosses_at(const std::array<Vec3, 3>& c, const Vec3& a, const Vec3& b, const Vec3& o) {
+    for (int i = 0; i < 3; ++i)
+      if (segment_crosses_triangle(c[static_cast<std::size_t>(i)], c[static_cast<std::size_t>((i + 1) % 3)], a, b, o)) return true;
+    return false;
+  }
+  bool obstacle_crosses(const std::array<int32_t, 3>& C, const std::array<int32_t, 3>& O, const std::vector<Vec3>& ox) const {
+    const Vec3 &a = ox[static_cast<std::size_t>(O[0])], &b = ox[static_cast<std::size_t>(O[1])], &c = ox[static_cast<std::size_t>(O[2])];
+    if (area_normal(a, b, c).squaredNorm() == 0) return false;
+    if (obstacle_crosses_at({at(C[0]), at(C[1]), at(C[2])}, a, b, c)) return true;
+    return obstacle_crosses_at({a, b, c}, at(C[0]), at(C[1]), at(C[2]));
   }
 
   // The contour segment of two crossing cloth faces: its two ends are edge-face crossings; the

@@ -21,6 +21,7 @@ struct UntangleParams {
   double step = 0.002;      // m: the largest move of a vertex in one iteration
   double thickness = 0.002; // m: the clearance cloth is moved out of an obstacle by
   int max_iterations = 100;
+  int threads = 1;          // for the crossing tests (the same moves on any number)
 };
 
 struct UntangleReport {

@@ -381,6 +381,7 @@ UntangleReport Simulation::untangle_cloth(FrameStats& stats) {
   params.thickness = scene_.collision.thickness;
   params.step = scene_.collision.thickness;
   params.max_iterations = scene_.collision.untangle_iterations;
+  params.threads = options_.threads;
   const UntangleReport r = untangle(model_.face_nodes, x_, fixed, obstacle_faces_, obstacle_x, params,
                                     collider_->obstacle_face_trees(obstacle_x, options_.threads));
   stats.untangle_moves += r.moves;
