@@ -79,16 +79,20 @@ Vec3 closest_triangle_weights(const Vec3& p, const Vec3& a, const Vec3& b, const
   return Vec3(t_ca, 0, 1 - t_ca);
 }
 
+std::optional<Vec2> closest_line_params(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const Vec3 d1 = b - a, d2 = d - c, r = a - c;
+  const double aa = d1.squaredNorm(), ee = d2.squaredNorm(), bb = d1.dot(d2), denom = aa * ee - bb * bb;
+  if (!(denom > 1e-14 * aa * ee && aa > 0 && ee > 0)) return std::nullopt;
+  const double s = std::clamp((bb * d2.dot(r) - d1.dot(r) * ee) / denom, 0.0, 1.0);
+  return Vec2(s, std::clamp((bb * s + d2.dot(r)) / ee, 0.0, 1.0));
+}
+
 Vec2 closest_segment_params(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   // Candidates: the interior solution (if not parallel) and the four endpoint projections.
   std::array<Vec2, 5> cand;
   int n = 0;
-  const Vec3 d1 = b - a, d2 = d - c, r = a - c;
-  const double aa = d1.squaredNorm(), ee = d2.squaredNorm(), bb = d1.dot(d2), denom = aa * ee - bb * bb;
-  if (denom > 1e-14 * aa * ee && aa > 0 && ee > 0) {
-    const double s = std::clamp((bb * d2.dot(r) - d1.dot(r) * ee) / denom, 0.0, 1.0);
-    cand[static_cast<std::size_t>(n++)] = Vec2(s, std::clamp((bb * s + d2.dot(r)) / ee, 0.0, 1.0));
-  }
+  const Vec3 d1 = b - a, d2 = d - c;
+  if (const std::optional<Vec2> lines = closest_line_params(a, b, c, d)) cand[static_cast<std::size_t>(n++)] = *lines;
   cand[static_cast<std::size_t>(n++)] = Vec2(0, segment_param(a, c, d));
   cand[static_cast<std::size_t>(n++)] = Vec2(1, segment_param(b, c, d));
   cand[static_cast<std::size_t>(n++)] = Vec2(segment_param(c, a, b), 0);

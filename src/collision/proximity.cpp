@@ -63,6 +63,13 @@ Aabb box_of(std::initializer_list<Vec3> pts) {
 
 bool interior(double s) { return s > 1e-6 && s < 1 - 1e-6; }
 
+// Whether two edges' closest points can be inside both (closest_line_params): when not, the
+// pair is no edge pair, and the endpoint candidates need not be computed.
+bool lines_meet_inside(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) {
+  const std::optional<Vec2> lines = closest_line_params(a0, a1, b0, b1);
+  return lines && interior(lines->x()) && interior(lines->y());
+}
+
 // The collider's primitives and their state at the step's start: what a search pairs.
 struct ProximityScene {
   const std::vector<std::array<int32_t, 3>>& cloth_faces;
@@ -286,6 +293,7 @@ class ProximitySearch {
     const auto& A = s_.cloth_edges[static_cast<std::size_t>(ea)];
     const auto& B = s_.cloth_edges[static_cast<std::size_t>(eb)];
     const Vec3 a0 = cx(A[0]), a1 = cx(A[1]), b0 = cx(B[0]), b1 = cx(B[1]);
+    if (!lines_meet_inside(a0, a1, b0, b1)) return;
     const Vec2 su = closest_segment_params(a0, a1, b0, b1);
     if (!interior(su.x()) || !interior(su.y())) return;
     const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));
@@ -307,6 +315,7 @@ class ProximitySearch {
     const auto& ox = s_.obstacle_x[o];
     const Vec3 a0 = cx(A[0]), a1 = cx(A[1]);
     const Vec3 &b0 = ox[static_cast<std::size_t>(B[0])], &b1 = ox[static_cast<std::size_t>(B[1])];
+    if (!lines_meet_inside(a0, a1, b0, b1)) return;
     const Vec2 su = closest_segment_params(a0, a1, b0, b1);
     if (!interior(su.x()) || !interior(su.y())) return;
     const Vec3 sep = (a0 + su.x() * (a1 - a0)) - (b0 + su.y() * (b1 - b0));

@@ -3,6 +3,7 @@
 // collision is never missed and never reported late; separated motion is never reported.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <random>
 
 #include "collision/ccd.hpp"
@@ -23,6 +24,33 @@ TEST(Distance, PointTriangleAndSegmentSegmentKnownValues) {
   EXPECT_NEAR(segment_segment_distance(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.5, 0.3, 0), Vec3(1.5, 0.3, 0)), 0.3, 1e-15);
   // Parallel, disjoint along the line.
   EXPECT_NEAR(segment_segment_distance(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 0)), 1.0, 1e-15);
+}
+
+// The lines' candidate decides whether two segments' closest points are inside both: on random
+// pairs (skew, nearly parallel, parallel, touching at an end), the closest pair is strictly inside
+// both exactly when the lines' candidate is, and is then that candidate.
+TEST(Distance, ClosestPointsInsideBothSegmentsAreTheLinesClosestPoints) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> U(-1, 1);
+  auto inside = [](const Vec2& q) { return q.x() > 1e-6 && q.x() < 1 - 1e-6 && q.y() > 1e-6 && q.y() < 1 - 1e-6; };
+  int both_inside = 0, lines_outside = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 a(U(rng), U(rng), U(rng)), b(U(rng), U(rng), U(rng)), c(U(rng), U(rng), U(rng));
+    Vec3 d(U(rng), U(rng), U(rng));
+    if (k % 4 == 1) d = c + (b - a) * (0.5 + U(rng)) + Vec3::Constant(1e-9 * U(rng));  // nearly parallel
+    if (k % 4 == 2) d = c + (b - a) * 0.7;                                             // parallel
+    const Vec2 closest = closest_segment_params(a, b, c, d);
+    const std::optional<Vec2> lines = closest_line_params(a, b, c, d);
+    if (!lines || !inside(*lines)) {
+      ++lines_outside;
+      EXPECT_FALSE(inside(closest)) << k;
+    } else if (inside(closest)) {
+      ++both_inside;
+      EXPECT_EQ(closest, *lines) << k;
+    }
+  }
+  EXPECT_GT(both_inside, 1000);
+  EXPECT_GT(lines_outside, 1000);
 }
 
 TEST(Ccd, VertexFallsThroughTriangle) {
