@@ -26,6 +26,13 @@ VecN<N> gather(const Eigen::VectorXd& v, const std::array<int32_t, N / 3>& nodes
   return out;
 }
 
+// A local matrix of k x k nodes stored block by block (SystemAssembler::Contribution).
+template <int K>
+void store_blocks(const MatN<3 * K>& local, double* out) {
+  for (int b = 0; b < K; ++b)
+    for (int a = 0; a < K; ++a) Eigen::Map<Mat3>(out + 9 * (b * K + a)) = local.template block<3, 3>(3 * a, 3 * b);
+}
+
 }  // namespace
 
 SystemAssembler::SystemAssembler(const ClothModel& model, int threads) : model_(model) {
@@ -119,9 +126,9 @@ void SystemAssembler::build_gather_lists(int32_t slots, int threads) {
   slot_contrib_start_.assign(static_cast<std::size_t>(slots) + 1, 0);
   node_force_start_.assign(static_cast<std::size_t>(n) + 1, 0);
   auto for_each_element = [&](auto&& visit) {
-    for (int64_t f = 0; f < nf; ++f) visit(model.face_nodes[static_cast<std::size_t>(f)], f * kFaceMat, f * kFaceVec, 9);
+    for (int64_t f = 0; f < nf; ++f) visit(model.face_nodes[static_cast<std::size_t>(f)], f * kFaceMat, f * kFaceVec);
     for (int64_t e = 0; e < ne; ++e)
-      visit(model.bend_nodes[static_cast<std::size_t>(e)], nf * kFaceMat + e * kBendMat, nf * kFaceVec + e * kBendVec, 12);
+      visit(model.bend_nodes[static_cast<std::size_t>(e)], nf * kFaceMat + e * kBendMat, nf * kFaceVec + e * kBendVec);
   };
   // The slot of every block, in visiting order (9 a face, then 16 a bending element), looked up
   // in parallel.
@@ -141,7 +148,7 @@ void SystemAssembler::build_gather_lists(int32_t slots, int threads) {
     for (int64_t k = 0; k < nf + ne; ++k) find_element_slots(k);
   }
   for (const int32_t s : element_slots) ++slot_contrib_start_[static_cast<std::size_t>(s) + 1];
-  for_each_element([&](const auto& nodes, int64_t, int64_t, int32_t) {
+  for_each_element([&](const auto& nodes, int64_t, int64_t) {
     for (int32_t a : nodes) ++node_force_start_[static_cast<std::size_t>(a) + 1];
   });
   for (int32_t s = 0; s < slots; ++s) slot_contrib_start_[static_cast<std::size_t>(s) + 1] += slot_contrib_start_[static_cast<std::size_t>(s)];
@@ -151,14 +158,13 @@ void SystemAssembler::build_gather_lists(int32_t slots, int threads) {
   std::vector<int32_t> slot_fill(slot_contrib_start_.begin(), slot_contrib_start_.end() - 1);
   std::vector<int32_t> node_fill(node_force_start_.begin(), node_force_start_.end() - 1);
   std::size_t visited = 0;
-  for_each_element([&](const auto& nodes, int64_t mat_offset, int64_t vec_offset, int32_t ld) {
+  for_each_element([&](const auto& nodes, int64_t mat_offset, int64_t vec_offset) {
     const int k = static_cast<int>(nodes.size());
     for (int a = 0; a < k; ++a) {
       force_parts_[static_cast<std::size_t>(node_fill[static_cast<std::size_t>(nodes[static_cast<std::size_t>(a)])]++)] = vec_offset + 3 * a;
       for (int b = 0; b < k; ++b) {
         const int32_t s = element_slots[visited++];
-        contributions_[static_cast<std::size_t>(slot_fill[static_cast<std::size_t>(s)]++)] =
-            Contribution{mat_offset + static_cast<int64_t>(3 * b) * ld + 3 * a, ld};
+        contributions_[static_cast<std::size_t>(slot_fill[static_cast<std::size_t>(s)]++)] = mat_offset + 9 * static_cast<int64_t>(b * k + a);
       }
     }
   });
@@ -218,7 +224,7 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
           }
         }
       }
-      std::copy(local.data(), local.data() + kFaceMat, matrix_buffer_.get() + f * kFaceMat);
+      store_blocks<3>(local, matrix_buffer_.get() + f * kFaceMat);
       std::copy(rhs.data(), rhs.data() + kFaceVec, rhs_buffer_.get() + f * kFaceVec);
     }
 #pragma omp for schedule(static)
@@ -229,7 +235,7 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
       VecN<12> vl = gather<12>(v, nodes);
       MatN<12> local = h2 * b.hessian;
       VecN<12> rhs = -h * b.gradient - h2 * (b.hessian * vl);
-      std::copy(local.data(), local.data() + kBendMat, matrix_buffer_.get() + nf * kFaceMat + e * kBendMat);
+      store_blocks<4>(local, matrix_buffer_.get() + nf * kFaceMat + e * kBendMat);
       std::copy(rhs.data(), rhs.data() + kBendVec, rhs_buffer_.get() + nf * kFaceVec + e * kBendVec);
     }
 #pragma omp for schedule(static)
@@ -239,8 +245,7 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
         const int32_t s = slot_start_[static_cast<std::size_t>(j)] + static_cast<int32_t>(k);
         Mat3 block = Mat3::Zero();
         for (int32_t q = slot_contrib_start_[static_cast<std::size_t>(s)]; q < slot_contrib_start_[static_cast<std::size_t>(s) + 1]; ++q) {
-          const Contribution& c = contributions_[static_cast<std::size_t>(q)];
-          block += Eigen::Map<const Mat3, 0, Eigen::OuterStride<>>(matrix_buffer_.get() + c.offset, Eigen::OuterStride<>(c.ld));
+          block += Eigen::Map<const Mat3>(matrix_buffer_.get() + contributions_[static_cast<std::size_t>(q)]);
         }
         if (nb[k] == j) block.diagonal().array() += model_.node_mass[static_cast<std::size_t>(j)] * (1.0 + h * p.damping);
         for (int c = 0; c < 3; ++c)

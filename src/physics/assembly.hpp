@@ -65,10 +65,10 @@ class SystemAssembler {
   int32_t build_neighbours(int threads);
   void build_pattern(int32_t slots);
   void build_gather_lists(int32_t slots, int threads);
-  struct Contribution {
-    int64_t offset;  // of the local matrix's 3x3 block (a, b), column-major with leading dim ld
-    int32_t ld;
-  };
+  // Where an element's local 3x3 block (a, b) lies in matrix_buffer_: the element's blocks are
+  // stored one after another (block (a, b) the (b k + a)-th of its k x k), each column-major, so
+  // the gather reads each block from one or two cache lines.
+  using Contribution = int64_t;
   int32_t slot_of(int32_t row_node, int32_t col_node) const;
   // Node j's neighbours, sorted, j included: the rows of its column's blocks, one per slot.
   std::span<const int32_t> neighbours(int32_t j) const {
