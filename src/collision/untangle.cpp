@@ -11,6 +11,7 @@
 
 #include "collision/intersection.hpp"
 #include "core/bvh.hpp"
+#include "core/task_order.hpp"
 
 namespace vdc {
 
@@ -141,13 +142,8 @@ class Untangler {
   template <class Test>
   std::vector<char> flags(std::size_t n, Test&& test) const {
     std::vector<char> out(n, 0);
-    const auto count = static_cast<int64_t>(n);
-    if (params_.threads > 1) {
-#pragma omp parallel for schedule(static) num_threads(params_.threads)
-      for (int64_t k = 0; k < count; ++k) out[static_cast<std::size_t>(k)] = test(static_cast<std::size_t>(k)) ? 1 : 0;
-    } else {
-      for (int64_t k = 0; k < count; ++k) out[static_cast<std::size_t>(k)] = test(static_cast<std::size_t>(k)) ? 1 : 0;
-    }
+    for_each_index(static_cast<int64_t>(n), params_.threads,
+                   [&](int64_t k) { out[static_cast<std::size_t>(k)] = test(static_cast<std::size_t>(k)) ? 1 : 0; });
     return out;
   }
 

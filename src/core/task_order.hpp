@@ -3,6 +3,7 @@
 // and leave the other threads idle. Each task's result must not depend on which thread ran it.
 #pragma once
 #include <algorithm>
+#include <cstdint>
 #include <exception>
 #include <numeric>
 #include <vector>
@@ -48,6 +49,19 @@ void for_each_in_order(const std::vector<int>& order, int team, F&& body) {
   }
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
+}
+
+// body(i) for every i in [0, n) on `threads` threads, in static blocks. One thread runs a plain
+// loop, outside any OpenMP region, so that the regions inside body are not nested ones. body's
+// results must not depend on which thread ran it.
+template <class F>
+void for_each_index(int64_t n, int threads, F&& body) {
+  if (threads > 1) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int64_t i = 0; i < n; ++i) body(i);
+  } else {
+    for (int64_t i = 0; i < n; ++i) body(i);
+  }
 }
 
 }  // namespace vdc

@@ -6,6 +6,8 @@
 #include <memory>
 #include <span>
 
+#include "core/task_order.hpp"
+
 namespace vdc {
 
 namespace {
@@ -71,12 +73,7 @@ int32_t SystemAssembler::build_neighbours(int threads) {
     std::sort(begin, end);
     kept[static_cast<std::size_t>(i)] = static_cast<int32_t>(std::unique(begin, end) - begin);
   };
-  if (threads > 1) {
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int32_t i = 0; i < n; ++i) sort_run(i);
-  } else {
-    for (int32_t i = 0; i < n; ++i) sort_run(i);
-  }
+  for_each_index(n, threads, [&](int64_t i) { sort_run(static_cast<int32_t>(i)); });
   int32_t packed = 0;
   for (int32_t i = 0; i < n; ++i) {
     const auto begin = slot_node_.begin() + slot_start_[static_cast<std::size_t>(i)];
@@ -141,12 +138,7 @@ void SystemAssembler::build_gather_lists(int32_t slots, int threads) {
     if (k < nf) find_slots(model.face_nodes[static_cast<std::size_t>(k)], element_slots.data() + 9 * k);
     else find_slots(model.bend_nodes[static_cast<std::size_t>(k - nf)], element_slots.data() + 9 * nf + 16 * (k - nf));
   };
-  if (threads > 1) {
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int64_t k = 0; k < nf + ne; ++k) find_element_slots(k);
-  } else {
-    for (int64_t k = 0; k < nf + ne; ++k) find_element_slots(k);
-  }
+  for_each_index(nf + ne, threads, find_element_slots);
   for (const int32_t s : element_slots) ++slot_contrib_start_[static_cast<std::size_t>(s) + 1];
   for_each_element([&](const auto& nodes, int64_t, int64_t) {
     for (int32_t a : nodes) ++node_force_start_[static_cast<std::size_t>(a) + 1];

@@ -6,6 +6,8 @@
 
 #include <omp.h>
 
+#include "core/task_order.hpp"
+
 namespace vdc {
 
 std::vector<std::pair<Eigen::Index, Eigen::Index>> independent_ranges(const SparseMatrix& a, Eigen::Index min_size) {
@@ -69,12 +71,8 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
     }
   };
   // (No one-thread region around a single block: CHOLMOD's own would then be a nested team.)
-  if (blocks_.size() > 1 && params_.threads > 1) {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
-    for (std::size_t k = 0; k < blocks_.size(); ++k) analyze_block(k);
-  } else {
-    for (std::size_t k = 0; k < blocks_.size(); ++k) analyze_block(k);
-  }
+  for_each_in_order(index_order(blocks_.size()), blocks_.size() > 1 ? params_.threads : 1,
+                    [&](int k) { analyze_block(static_cast<std::size_t>(k)); });
   std::vector<std::pair<Eigen::Index, std::pair<int, int>>> units;
   for (std::size_t k = 0; k < blocks_.size(); ++k) {
     if (blocks_[k].separated) {

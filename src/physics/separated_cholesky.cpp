@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/task_order.hpp"
 #include "physics/cholmod_use.hpp"
 #include "physics/supernodal_cholesky.hpp"
 
@@ -153,12 +154,7 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
   auto analyze_half = [&](int h) {
     analyzed[static_cast<std::size_t>(h)] = halves_[static_cast<std::size_t>(h)]->analyze(a, start, h, part, col_start, rows, separator_);
   };
-  if (threads >= 2) {
-#pragma omp parallel for schedule(static, 1) num_threads(2)
-    for (int h = 0; h < 2; ++h) analyze_half(h);
-  } else {
-    for (int h = 0; h < 2; ++h) analyze_half(h);
-  }
+  for_each_index(2, threads >= 2 ? 2 : 1, [&](int64_t h) { analyze_half(static_cast<int>(h)); });
   if (!analyzed[0] || !analyzed[1]) return false;
   const Half& first = *halves_[0];
   for (Eigen::Index c = first.interior; c < first.m.cols(); ++c)

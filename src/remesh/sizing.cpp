@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/task_order.hpp"
 #include "remesh/remesher.hpp"
 
 namespace vdc {
@@ -148,18 +149,6 @@ auto listed(const Range& range) {
   return items;
 }
 
-// body(items[i]) for every i, on `threads` threads (a plain loop on one: no region to nest in).
-template <class Handle, class F>
-void for_each_of(const std::vector<Handle>& items, int threads, F&& body) {
-  const auto n = static_cast<int64_t>(items.size());
-  if (threads > 1) {
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int64_t i = 0; i < n; ++i) body(items[static_cast<std::size_t>(i)]);
-  } else {
-    for (int64_t i = 0; i < n; ++i) body(items[static_cast<std::size_t>(i)]);
-  }
-}
-
 }  // namespace
 
 void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier, const std::vector<ObstaclePlane>& planes,
@@ -169,7 +158,8 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
   std::vector<Mat2> motion(modifier ? static_cast<std::size_t>(mesh.face_capacity()) : 0, Mat2::Zero());
   const bool keeps_compression = modifier && modifier->keeps_compression();
   const std::vector<FaceId> faces = listed(mesh.faces());
-  for_each_of(faces, threads, [&](FaceId f) {
+  for_each_index(static_cast<int64_t>(faces.size()), threads, [&](int64_t k) {
+    const FaceId f = faces[static_cast<std::size_t>(k)];
     const SizingCriteria c = sizing_criteria(mesh, f, normals, p);
     face[f] = clamp_sizing(largest_criterion(c, mesh, f, planes), p);
     if (modifier)
@@ -184,7 +174,8 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
     // so a coarsened garment cannot cut into the body it hangs on.
     auto& coarsening = mesh.face_attrs().get_or_add<double>(kCoarseningAttr, 1.0);
     auto& fold_led = mesh.face_attrs().get_or_add<double>(kFoldLedAttr, 0.0);
-    for_each_of(faces, threads, [&](FaceId f) {
+    for_each_index(static_cast<int64_t>(faces.size()), threads, [&](int64_t k) {
+    const FaceId f = faces[static_cast<std::size_t>(k)];
       const Mat2& physical = before[static_cast<std::size_t>(f.idx)];
       if (face[f] != physical) face[f] = clamp_sizing(planes.empty() ? face[f] : tensor_max(face[f], obstacle_metric(mesh, f, planes)), p);
       const double against_physics = face[f] == physical ? 1.0 : metric_ratio(physical, face[f]);
@@ -195,7 +186,8 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
   }
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());
   const std::vector<VertId> verts = listed(mesh.verts());
-  for_each_of(verts, threads, [&](VertId v) {
+  for_each_index(static_cast<int64_t>(verts.size()), threads, [&](int64_t k) {
+    const VertId v = verts[static_cast<std::size_t>(k)];
     Mat2 sum = Mat2::Zero();
     double area = 0;
     for (FaceId f : mesh.vert_faces(v)) {
