@@ -113,7 +113,7 @@ class Untangler {
       cloth.emplace_back(fa, fb);
     });
     const std::vector<char> cloth_crossing = flags(cloth.size(), [&](std::size_t k) {
-      return cloth_crossings(faces_[static_cast<std::size_t>(cloth[k].first)], faces_[static_cast<std::size_t>(cloth[k].second)]);
+      return !crossings_between(faces_[static_cast<std::size_t>(cloth[k].first)], faces_[static_cast<std::size_t>(cloth[k].second)]).empty();
     });
     int cloth_pairs = 0, obstacle_pairs = 0;
     for (std::size_t k = 0; k < cloth.size(); ++k)
@@ -147,18 +147,6 @@ class Untangler {
     return out;
   }
 
-  // Whether an edge of either face crosses the other as cloth_contour finds crossings.
-  bool cloth_crossings(const std::array<int32_t, 3>& A, const std::array<int32_t, 3>& B) const {
-    auto any_through = [&](const std::array<int32_t, 3>& E, const std::array<int32_t, 3>& F) {
-      for (int i = 0; i < 3; ++i) {
-        const int32_t p = E[static_cast<std::size_t>(i)], q = E[static_cast<std::size_t>((i + 1) % 3)];
-        if (edge_through_face({p, q}, F, at(p), at(q), at(F[0]), at(F[1]), at(F[2]))) return true;
-      }
-      return false;
-    };
-    return any_through(A, B) || any_through(B, A);
-  }
-
   // Whether obstacle_push finds a crossing of cloth face C and obstacle face O.
   static bool obstacle_crosses_at(const std::array<Vec3, 3>& c, const Vec3& a, const Vec3& b, const Vec3& o) {
     for (int i = 0; i < 3; ++i)
@@ -175,7 +163,8 @@ class Untangler {
   // The contour segment of two crossing cloth faces: its two ends are edge-face crossings; the
   // length |P1 - P2| has gradient u at P1 and -u at P2, taken to the nodes through each
   // crossing's dependence on a translation of its edge relative to its face.
-  bool cloth_contour(const std::array<int32_t, 3>& A, const std::array<int32_t, 3>& B) {
+  // The edge-face crossings of two cloth faces: each one's edges through the other.
+  std::vector<Crossing> crossings_between(const std::array<int32_t, 3>& A, const std::array<int32_t, 3>& B) const {
     std::vector<Crossing> ks;
     auto edges_through = [&](const std::array<int32_t, 3>& E, const std::array<int32_t, 3>& F) {
       for (int i = 0; i < 3; ++i) {
@@ -185,6 +174,11 @@ class Untangler {
     };
     edges_through(A, B);
     edges_through(B, A);
+    return ks;
+  }
+
+  bool cloth_contour(const std::array<int32_t, 3>& A, const std::array<int32_t, 3>& B) {
+    const std::vector<Crossing> ks = crossings_between(A, B);
     if (ks.empty()) return false;
     if (ks.size() < 2) return true;  // touching at a point: counted, no direction to move
     std::size_t i1 = 0, i2 = 1;

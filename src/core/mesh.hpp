@@ -40,6 +40,12 @@ class LiveRange {
   explicit LiveRange(const std::vector<char>* alive) : alive_(alive) {}
   Iterator begin() const { return Iterator(alive_, 0); }
   Iterator end() const { return Iterator(alive_, static_cast<int32_t>(alive_->size())); }
+  // The live handles in order (for loops that index them, on several threads say).
+  std::vector<Handle<Tag>> list() const {
+    std::vector<Handle<Tag>> out;
+    for (Handle<Tag> h : *this) out.push_back(h);
+    return out;
+  }
 
  private:
   const std::vector<char>* alive_;

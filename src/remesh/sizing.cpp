@@ -139,25 +139,13 @@ Mat2 clamp_sizing(const Mat2& m, const SizingParams& p) {
   return eig.eigenvectors() * l.asDiagonal() * eig.eigenvectors().transpose();
 }
 
-namespace {
-
-// The live handles of a range, in order.
-template <class Range>
-auto listed(const Range& range) {
-  std::vector<std::decay_t<decltype(*range.begin())>> items;
-  for (auto h : range) items.push_back(h);
-  return items;
-}
-
-}  // namespace
-
 void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier* modifier, const std::vector<ObstaclePlane>& planes,
                     int threads) {
   auto& face = mesh.face_attrs().get_or_add<Mat2>(kFaceSizingAttr, Mat2::Zero());
   const std::vector<Vec3> normals = node_normals(mesh);
   std::vector<Mat2> motion(modifier ? static_cast<std::size_t>(mesh.face_capacity()) : 0, Mat2::Zero());
   const bool keeps_compression = modifier && modifier->keeps_compression();
-  const std::vector<FaceId> faces = listed(mesh.faces());
+  const std::vector<FaceId> faces = mesh.faces().list();
   for_each_index(static_cast<int64_t>(faces.size()), threads, [&](int64_t k) {
     const FaceId f = faces[static_cast<std::size_t>(k)];
     const SizingCriteria c = sizing_criteria(mesh, f, normals, p);
@@ -185,7 +173,7 @@ void compute_sizing(Mesh& mesh, const SizingParams& p, const FaceSizingModifier*
     });
   }
   auto& vert = mesh.vert_attrs().get_or_add<Mat2>(kSizingAttr, Mat2::Zero());
-  const std::vector<VertId> verts = listed(mesh.verts());
+  const std::vector<VertId> verts = mesh.verts().list();
   for_each_index(static_cast<int64_t>(verts.size()), threads, [&](int64_t k) {
     const VertId v = verts[static_cast<std::size_t>(k)];
     Mat2 sum = Mat2::Zero();

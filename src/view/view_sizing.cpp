@@ -121,8 +121,7 @@ void ViewSizing::evaluate(const Mesh& mesh, const std::vector<std::vector<DepthI
   }
   auto occluders_of = [&](std::size_t k) { return occluders != nullptr && !(*occluders)[k].empty() ? &(*occluders)[k] : nullptr; };
   const bool settling = params_.settling(time_);
-  std::vector<FaceId> faces;
-  for (FaceId f : mesh.faces()) faces.push_back(f);
+  const std::vector<FaceId> faces = mesh.faces().list();
   const auto n = static_cast<int64_t>(faces.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (int64_t i = 0; i < n; ++i)
