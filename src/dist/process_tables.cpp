@@ -33,7 +33,7 @@ void FrameTable::process_row(int frame, int process, const ProcessReport& r, dou
 
 void FrameTable::group_row(const std::string& group, int process, const PartFrame& p) {
   table_ << p.stats.frame << "," << group << "," << process << "," << p.stats.faces << "," << std::fixed << std::setprecision(6) << p.seconds
-         << "\n";
+         << "," << p.stats.far_groups << "\n";
   finish_row();
 }
 

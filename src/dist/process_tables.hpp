@@ -16,7 +16,8 @@ class FrameTable {
   // Process `process`'s row of ranks.csv for `frame`: its report of the frame, and the seconds
   // it then waited for the others and spent moving groups.
   void process_row(int frame, int process, const ProcessReport& r, double waiting, double moving);
-  // A group's row of groups.csv: the process that stepped it, its faces and seconds.
+  // A group's row of groups.csv: the process that stepped it, its faces and seconds, and 1 when
+  // it ran at the far level of detail (FrameStats::far_groups).
   void group_row(const std::string& group, int process, const PartFrame& p);
 
  private:
@@ -26,6 +27,6 @@ class FrameTable {
 };
 
 inline constexpr const char* kRanksHeader = "frame,process,groups,faces,busy_seconds,waiting_seconds,moving_seconds";
-inline constexpr const char* kGroupsHeader = "frame,group,process,faces,seconds";
+inline constexpr const char* kGroupsHeader = "frame,group,process,faces,seconds,far";
 
 }  // namespace vdc

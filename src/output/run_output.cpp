@@ -26,7 +26,7 @@ const char* const kStatsHeader =
     "frame,faces,vertices,seconds,substeps,halvings,solver_iterations,factorizations,assemble_seconds,solve_seconds,"
     "remesh_seconds,splits,flips,collapses,collision_seconds,impacts,collision_iterations,collision_fallbacks,kinetic_energy,gravitational_energy,elastic_energy,"
     "proximity_pairs,untangle_moves,visible_faces,back_facing_faces,out_of_frame_faces,view_seconds,velocity_clamps,"
-    "remesh_undone,resident_mib,collision_candidates,remesh_refused,defocused_faces,blurred_faces,hidden_faces";
+    "remesh_undone,resident_mib,collision_candidates,remesh_refused,defocused_faces,blurred_faces,hidden_faces,far_groups";
 
 // A frame file's name, <mesh>.<frame>.<extension> with mesh cloth_* or obstacle_*, taken apart.
 struct FrameFileName {
@@ -182,13 +182,13 @@ void RunOutput::write_frame(const Ensemble& run, int frame) const {
 
 void RunOutput::write_stats_row(const FrameStats& s) {
   char line[1024];
-  std::snprintf(line, sizeof line, "%d,%d,%d,%.6f,%d,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d,%d,%.6f,%d,%d,%d,%.9g,%.9g,%.9g,%d,%d,%d,%d,%d,%.6f,%d,%d,%.1f,%lld,%d,%d,%d,%d\n", s.frame, s.faces, s.vertices, s.seconds,
+  std::snprintf(line, sizeof line, "%d,%d,%d,%.6f,%d,%d,%d,%d,%.6f,%.6f,%.6f,%d,%d,%d,%.6f,%d,%d,%d,%.9g,%.9g,%.9g,%d,%d,%d,%d,%d,%.6f,%d,%d,%.1f,%lld,%d,%d,%d,%d,%d\n", s.frame, s.faces, s.vertices, s.seconds,
                 s.substeps, s.halvings, s.solver_iterations, s.factorizations, s.assemble_seconds, s.solve_seconds, s.remesh_seconds, s.splits, s.flips, s.collapses, s.collision_seconds, s.impacts, s.collision_iterations,
                 s.collision_fallbacks, s.energy.kinetic,
                 s.energy.gravitational, s.energy.elastic, s.proximities, s.untangle_moves, s.visible_faces,
                 s.back_facing_faces, s.out_of_frame_faces, s.view_seconds, s.velocity_clamps, s.remesh_undone,
                 static_cast<double>(resident_kib()) / 1024.0, s.collision_candidates, s.remesh_refused, s.defocused_faces,
-                s.blurred_faces, s.hidden_faces);
+                s.blurred_faces, s.hidden_faces, s.far_groups);
   stats_ << line << std::flush;
   if (!stats_) throw OutputError(dir_ + "/stats.csv", "cannot write");
   tally(s.faces, s.seconds);

@@ -7,7 +7,7 @@ ViewParams parse_view(const JsonValue& j) {
   j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "linger", "l_min", "l_max", "silhouette_threshold", "settle",
                "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation", "defocus_scale",
                "motion_blur_scale", "occlusion", "v_occluded", "floor_in_frame", "fold_length", "fold_time", "gathering",
-               "keep_compression", "coarse_damping"});
+               "keep_compression", "coarse_damping", "far_remesh_every"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -44,6 +44,9 @@ ViewParams parse_view(const JsonValue& j) {
   p.motion_anticipation = j.boolean_or("motion_anticipation", p.motion_anticipation);
   p.defocus_scale = j.non_negative_or("defocus_scale", p.defocus_scale);
   p.motion_blur_scale = j.non_negative_or("motion_blur_scale", p.motion_blur_scale);
+  const long long far_every = j.integer_or("far_remesh_every", p.far_remesh_every);
+  if (far_every < 1 || far_every > 100) j.at("far_remesh_every").fail("must be an integer from 1 (every frame) to 100 (frames)");
+  p.far_remesh_every = static_cast<int>(far_every);
   return p;
 }
 

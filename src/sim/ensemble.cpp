@@ -33,6 +33,7 @@ void accumulate(FrameStats& t, const FrameStats& p) {
   t.defocused_faces += p.defocused_faces;
   t.blurred_faces += p.blurred_faces;
   t.hidden_faces += p.hidden_faces;
+  t.far_groups += p.far_groups;
   t.view_seconds += p.view_seconds;
   t.impacts += p.impacts;
   t.collision_iterations += p.collision_iterations;

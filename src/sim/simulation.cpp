@@ -9,6 +9,7 @@
 #include "core/task_order.hpp"
 #include "remesh/remesher.hpp"
 #include "remesh/sizing.hpp"
+#include "view/level_of_detail.hpp"
 #include "view/view_sizing.hpp"
 #include "remesh/obstacle_planes.hpp"
 #include "collision/intersection.hpp"
@@ -606,6 +607,21 @@ CollisionStats Simulation::resolve_collisions(const Eigen::VectorXd& x_start, do
   return c;
 }
 
+bool Simulation::beyond_resolution_now() const {
+  if (options_.mode != SimMode::View || frame_ < 0 || scene_.view.far_remesh_every <= 1 || scene_.view.settling(time())) return false;
+  std::vector<AnticipationWindow> windows;
+  for (const CameraPath* path : scene_.camera_paths()) windows.emplace_back(*path, time(), scene_.frame_time, scene_.view);
+  for (const Mesh& mesh : garments_) {
+    std::vector<Vec3> x, v;
+    for (NodeId n : mesh.nodes()) {
+      x.push_back(mesh.x(n));
+      v.push_back(mesh.v(n));
+    }
+    if (!beyond_resolution(windows, scene_.view, garment_reach(x, v), scene_.remeshing.size_max)) return false;
+  }
+  return true;
+}
+
 FrameStats Simulation::step_frame() {
   auto t0 = std::chrono::steady_clock::now();
   FrameStats stats;
@@ -615,7 +631,11 @@ FrameStats Simulation::step_frame() {
   // one ended (and the frame ends at the next frame's time): the obstacles' positions there, and
   // their collision hierarchies, are then the ones already computed, not a rounding away.
   auto boundary = [&](int s) { return s == scene_.substeps ? (frame_ + 1) * scene_.frame_time : t_frame + s * h; };
-  if (options_.mode != SimMode::Fixed) remesh_garments(stats);
+  // A group no camera resolves is remeshed on every far_remesh_every-th frame only (by frame
+  // number, so a resumed run skips the same frames).
+  stats.far_groups = beyond_resolution_now() ? 1 : 0;
+  const bool skip_remesh = stats.far_groups > 0 && frame_ % scene_.view.far_remesh_every != 0;
+  if (options_.mode != SimMode::Fixed && !skip_remesh) remesh_garments(stats);
   if (restart_pending_) rebuild();  // unless remeshing just did
   gather_state();
   for (int s = 0; s < scene_.substeps; ++s) advance(boundary(s), boundary(s + 1), stats);

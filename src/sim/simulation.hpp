@@ -57,6 +57,10 @@ struct FrameStats {
   int visible_faces = 0, back_facing_faces = 0, out_of_frame_faces = 0;
   int defocused_faces = 0, blurred_faces = 0;  // visible, their screen-space floor set by the lens's blur
   int hidden_faces = 0;  // facing the camera in frame, behind something opaque (view.occlusion)
+  // View mode with view.far_remesh_every above 1: 1 when no camera resolves the group's cloth
+  // (level_of_detail.hpp), so that it is remeshed only on every far_remesh_every-th frame (the
+  // view's counts above are then 0 on the frames between); summed over groups, how many.
+  int far_groups = 0;
   double view_seconds = 0;
   int impacts = 0, collision_iterations = 0, collision_fallbacks = 0;
   int velocity_clamps = 0;  // steps whose velocity changes were clamped as a last resort
@@ -114,6 +118,9 @@ class Simulation {
   // block's in view mode, none otherwise.
   double gathering() const { return options_.mode == SimMode::View ? scene_.view.gathering : 0.0; }
   void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
+  // View mode: whether every garment of the group is beyond what the cameras resolve now (the
+  // far level of detail, view.far_remesh_every); false while the drape settles.
+  bool beyond_resolution_now() const;
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
   // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip
   // or collapse makes a garment cross the obstacles or another garment as they were `standing`.

@@ -105,6 +105,11 @@ struct ViewParams {
   // open when the camera has motion blur: detail finer than the blur does not show. 0: off.
   double defocus_scale = 1;
   double motion_blur_scale = 1;
+  // Physics level of detail (an extension): a garment group whose cloth no camera resolves over
+  // the coming frames (level_of_detail.hpp: its folds of fold_length under half of l_min on
+  // screen wherever it can be in frame, and no edge it may have past l_max) is sized and remeshed
+  // only on every far_remesh_every-th frame; the frames between keep its mesh. 1: every frame.
+  int far_remesh_every = 1;
 };
 
 // How a face is seen at one instant.

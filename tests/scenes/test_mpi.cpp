@@ -168,7 +168,7 @@ TEST_F(Mpi, TwoAndThreeProcessesWriteWhatOneWrites) {
     // groups.csv: each group at each frame, its faces those of its garment in stats.csv's sum.
     std::ifstream group_rows(out / "groups.csv");
     std::getline(group_rows, line);
-    EXPECT_EQ(line, "frame,group,process,faces,seconds");
+    EXPECT_EQ(line, "frame,group,process,faces,seconds,far");
     std::map<int, int> faces;
     std::set<std::string> named;
     for (rows = 0; std::getline(group_rows, line); ++rows) {

@@ -482,6 +482,13 @@ const vdcloth = (() => {
     state.charts.faces = linePlot('faces-plot', 'Faces per frame (all garments)', 'faces', 'faces');
     state.charts.seconds = linePlot('seconds-plot', 'Seconds per frame (wall time)', 'seconds', 'seconds');
     state.charts.breakdown = runs.map(breakdownPlot);
+    // The physics level of detail, where a run used it: how many garment groups no camera
+    // resolved, each remeshed only every view.far_remesh_every frames.
+    if (runs.some((run) => column(run, 'far_groups').some((n) => n > 0))) {
+      document.getElementById('far-holder').hidden = false;
+      state.charts.far = linePlot('far-plot', 'Garment groups at the far level of detail (remeshed every far_remesh_every frames)', 'groups',
+                                  'far_groups');
+    }
   }
 
   // --- tables ------------------------------------------------------------------------------------
@@ -623,6 +630,7 @@ const vdcloth = (() => {
     out.plots.faces = values(state.charts.faces);
     out.plots.seconds = values(state.charts.seconds);
     out.plots.breakdown = state.charts.breakdown.map(values);
+    out.plots.far = state.charts.far ? values(state.charts.far) : null;
     out.plots.cuts = cuts();
     out.tables.summary = document.getElementById('summary-table').innerText;
     out.tables.log = document.getElementById('log-table').innerText;
