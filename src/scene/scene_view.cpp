@@ -7,7 +7,7 @@ ViewParams parse_view(const JsonValue& j) {
   j.only_keys({"v_back", "v_out", "margin", "anticipation", "lead", "linger", "l_min", "l_max", "silhouette_threshold", "settle",
                "back_occlusion", "occlusion_scale", "occlusion_erosion", "occlusion_depth", "motion_anticipation", "defocus_scale",
                "motion_blur_scale", "occlusion", "v_occluded", "floor_in_frame", "fold_length", "fold_time", "gathering",
-               "keep_compression", "coarse_damping", "far_remesh_every"});
+               "keep_compression", "coarse_damping", "far_remesh_every", "far_after"});
   ViewParams p;
   p.v_back = j.positive_or("v_back", p.v_back);
   p.v_out = j.positive_or("v_out", p.v_out);
@@ -47,6 +47,7 @@ ViewParams parse_view(const JsonValue& j) {
   const long long far_every = j.integer_or("far_remesh_every", p.far_remesh_every);
   if (far_every < 1 || far_every > 100) j.at("far_remesh_every").fail("must be an integer from 1 (every frame) to 100 (frames)");
   p.far_remesh_every = static_cast<int>(far_every);
+  p.far_after = j.non_negative_or("far_after", p.far_after);
   return p;
 }
 

@@ -609,6 +609,7 @@ CollisionStats Simulation::resolve_collisions(const Eigen::VectorXd& x_start, do
 
 bool Simulation::beyond_resolution_now() const {
   if (options_.mode != SimMode::View || frame_ < 0 || scene_.view.far_remesh_every <= 1 || scene_.view.settling(time())) return false;
+  if (time() + 1e-9 < scene_.view.far_after) return false;  // the drape forms on a mesh remeshed every frame
   std::vector<AnticipationWindow> windows;
   for (const CameraPath* path : scene_.camera_paths()) windows.emplace_back(*path, time(), scene_.frame_time, scene_.view);
   for (const Mesh& mesh : garments_) {

@@ -110,6 +110,10 @@ struct ViewParams {
   // screen wherever it can be in frame, and no edge it may have past l_max) is sized and remeshed
   // only on every far_remesh_every-th frame; the frames between keep its mesh. 1: every frame.
   int far_remesh_every = 1;
+  // s: not before this time. A dress dropping into its drape refines as its folds form, and a
+  // mesh that waits frames for them drapes elsewhere (crowd-100's sample: overlap 0.854 against
+  // 0.888 from frame 0, 0.886 from 1 s on).
+  double far_after = 1;
 };
 
 // How a face is seen at one instant.

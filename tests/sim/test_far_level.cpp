@@ -1,5 +1,6 @@
 // The far level of detail in a view run (view.far_remesh_every): a hanging sheet that a camera
-// 40 m away cannot resolve is remeshed on every third frame only, and keeps its mesh between;
+// 40 m away cannot resolve is remeshed on every third frame only (from view.far_after on), and
+// keeps its mesh between;
 // one 2 m away is remeshed every frame; a camera dollying in switches the level mid-run, and a
 // run resumed across the switch, or made on two threads, is the same run bit for bit.
 #include <gtest/gtest.h>
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 // m, then from 0.24 s (frame 6) to 0.6 s (frame 15) dollying to `to` m, looking at the sheet.
 // l_min 4 and 2 cm folds (the defaults) make it unresolved beyond about 6 m for this 640 x 360,
 // 40-degree lens (level_of_detail.hpp).
-Scene hanging_sheet(double from, double to, int every) {
+Scene hanging_sheet(double from, double to, int every, double far_after = 0) {
   const fs::path dir = fs::temp_directory_path() / ("vdcloth-far-level-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
   fs::create_directories(dir);
   const fs::path path = dir / "sheet.json";
@@ -29,7 +30,7 @@ Scene hanging_sheet(double from, double to, int every) {
       {"time": 0, "position": [0.25, 0.75, )" << from << R"(], "target": [0.25, 0.75, 0]},
       {"time": 0.24, "position": [0.25, 0.75, )" << from << R"(], "target": [0.25, 0.75, 0]},
       {"time": 0.6, "position": [0.25, 0.75, )" << to << R"(], "target": [0.25, 0.75, 0]}]},
-    "view": {"l_min": 4, "far_remesh_every": )" << every << R"(},
+    "view": {"l_min": 4, "far_after": )" << far_after << R"(, "far_remesh_every": )" << every << R"(},
     "garments": [{"name": "sheet", "mesh": {"grid": {"size": [0.5, 0.5], "cells": [8, 8]}}, "material": ")"
                       << VDCLOTH_SOURCE_DIR << R"(/materials/cotton.json", "transform": {"translate": [0, 1, 0]},
       "handles": [{"uv": [[0, 1], [1, 1]]}]}]})";
@@ -72,6 +73,10 @@ TEST(FarLevel, AnUnresolvedGroupIsRemeshedOnEveryThirdFrameAndKeepsItsMeshBetwee
       EXPECT_GT(s.remesh_seconds, 0) << "frame " << s.frame;
     }
   }
+  // Not before far_after: frames starting at 0, 0.04 and 0.08 s are remeshed, 0.12 s is far.
+  Simulation later(hanging_sheet(40, 40, 3, 0.1), SimOptions{SimMode::View, 1});
+  const std::vector<FrameStats> after = run(later, 4);
+  for (int f = 0; f < 4; ++f) EXPECT_EQ(after[static_cast<std::size_t>(f)].far_groups, f == 3 ? 1 : 0) << "frame " << f + 1;
   // Adaptive mode has no level of detail.
   Simulation adaptive(hanging_sheet(40, 40, 3), SimOptions{SimMode::Adaptive, 1});
   for (const FrameStats& s : run(adaptive, 2)) EXPECT_EQ(s.far_groups, 0);
