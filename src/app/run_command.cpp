@@ -49,7 +49,8 @@ bool same_build_everywhere(const Cluster& cluster, uint64_t build_hash, std::ost
 // files) before any process writes; the others join it.
 struct RunFiles {
   std::optional<RunOutput> output;
-  std::optional<FrameTable> ranks, groups;  // rank 0's, in a run of several processes
+  std::optional<FrameTable> ranks;   // rank 0's, in a run of several processes
+  std::optional<FrameTable> groups;  // rank 0's, in a run of several processes or garment groups
 };
 
 void open_files(const Cluster& cluster, const RunSetup& setup, RunFiles& files) {
@@ -57,11 +58,10 @@ void open_files(const Cluster& cluster, const RunSetup& setup, RunFiles& files) 
   if (!cluster.root()) files.output.emplace(RunOutput::joining(setup.dir));
   else if (resume) files.output.emplace(setup.dir, resume->frame);
   else files.output.emplace(setup.dir);
-  if (cluster.root() && cluster.size() > 1) {
-    const int kept = resume ? resume->frame : 0;
-    files.ranks.emplace(setup.dir + "/ranks.csv", kRanksHeader, kept);
-    files.groups.emplace(setup.dir + "/groups.csv", kGroupsHeader, kept);
-  }
+  if (!cluster.root()) return;
+  const int kept = resume ? resume->frame : 0;
+  if (cluster.size() > 1) files.ranks.emplace(setup.dir + "/ranks.csv", kRanksHeader, kept);
+  if (cluster.size() > 1 || setup.owner.size() > 1) files.groups.emplace(setup.dir + "/groups.csv", kGroupsHeader, kept);
 }
 
 int faces_everywhere(const Cluster& cluster, const Ensemble& sim) {

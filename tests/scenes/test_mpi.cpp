@@ -185,6 +185,21 @@ TEST_F(Mpi, TwoAndThreeProcessesWriteWhatOneWrites) {
     for (const auto& [frame, count] : faces) EXPECT_EQ(std::to_string(frame) + "," + std::to_string(count) + ",", stats[static_cast<std::size_t>(frame - 1)].substr(0, std::to_string(frame).size() + std::to_string(count).size() + 2));
   }
   EXPECT_FALSE(fs::exists(dir_ / "one" / "ranks.csv"));
+  // One process of four groups writes groups.csv too, every group on process 0 at full level.
+  std::ifstream one(dir_ / "one" / "groups.csv");
+  std::string line;
+  std::getline(one, line);
+  EXPECT_EQ(line, "frame,group,process,faces,seconds,far");
+  int rows = 0;
+  for (; std::getline(one, line); ++rows) {
+    int frame = 0, process = -1, count = 0, far = -1;
+    char group[8] = {};
+    double seconds = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%7[^,],%d,%d,%lf,%d", &frame, group, &process, &count, &seconds, &far), 6) << line;
+    EXPECT_EQ(process, 0);
+    EXPECT_EQ(far, 0);
+  }
+  EXPECT_EQ(rows, 12 * 4);
 }
 
 // With the direct solver groups move after every frame, between checkpoints too (every three
