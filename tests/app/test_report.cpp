@@ -120,49 +120,55 @@ std::map<std::string, int> obj_vertices(const FrameFiles& files) {
   return counts;
 }
 
+// The cells of one CSV line.
+std::vector<std::string> csv_cells(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream s(line);
+  for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+  return cells;
+}
+
+// A run's stats.csv: its header's cells and its rows' cells.
+struct StatsTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::size_t column(const std::string& name) const {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  }
+};
+
+StatsTable read_stats(const std::string& run_dir) {
+  std::ifstream in(run_dir + "/stats.csv");
+  StatsTable t;
+  std::string line;
+  std::getline(in, line);
+  t.header = csv_cells(line);
+  while (std::getline(in, line)) t.rows.push_back(csv_cells(line));
+  return t;
+}
+
 // A stats.csv column.
 std::vector<double> stats_column(const std::string& run_dir, const std::string& column) {
-  std::ifstream in(run_dir + "/stats.csv");
-  std::string header;
-  std::getline(in, header);
-  std::vector<std::string> names;
-  std::stringstream h(header);
-  for (std::string cell; std::getline(h, cell, ',');) names.push_back(cell);
-  const auto c = static_cast<std::size_t>(std::find(names.begin(), names.end(), column) - names.begin());
+  const StatsTable t = read_stats(run_dir);
   std::vector<double> values;
-  for (std::string line; std::getline(in, line);) {
-    std::stringstream cells(line);
-    std::string cell;
-    for (std::size_t k = 0; k <= c && std::getline(cells, cell, ','); ++k) {
-    }
-    values.push_back(std::stod(cell));
-  }
+  for (const auto& row : t.rows) values.push_back(std::stod(row.at(t.column(column))));
   return values;
 }
 
 // Sets a stats.csv column to `values`, a row each.
 void set_stats_column(const std::string& run_dir, const std::string& column, const std::vector<int>& values) {
-  std::ifstream in(run_dir + "/stats.csv");
-  std::string header;
-  std::getline(in, header);
-  std::vector<std::string> names;
-  std::stringstream h(header);
-  for (std::string cell; std::getline(h, cell, ',');) names.push_back(cell);
-  const auto c = static_cast<std::size_t>(std::find(names.begin(), names.end(), column) - names.begin());
-  ASSERT_LT(c, names.size()) << column;
-  std::string text = header + "\n";
-  std::size_t row = 0;
-  for (std::string line; std::getline(in, line); ++row) {
-    ASSERT_LT(row, values.size());
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-    cells.at(c) = std::to_string(values[row]);
+  StatsTable t = read_stats(run_dir);
+  ASSERT_EQ(t.rows.size(), values.size());
+  std::string text;
+  auto add = [&](const std::vector<std::string>& cells) {
     for (std::size_t k = 0; k < cells.size(); ++k) text += (k ? "," : "") + cells[k];
     text += "\n";
+  };
+  add(t.header);
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    t.rows[r].at(t.column(column)) = std::to_string(values[r]);
+    add(t.rows[r]);
   }
-  ASSERT_EQ(row, values.size());
-  in.close();
   std::ofstream(run_dir + "/stats.csv") << text;
 }
 
