@@ -117,9 +117,12 @@ class Simulation {
   // The membranes' resistance to gathering beyond what coarse faces were made with: the view
   // block's in view mode, none otherwise.
   double gathering() const { return options_.mode == SimMode::View ? scene_.view.gathering : 0.0; }
-  void remesh_garments(FrameStats& stats);  // adaptive mode: sizing field and remesh, every frame
+  // Adaptive and view modes: sizing field and remesh, every frame (in view mode a far group's
+  // every far_remesh_every-th frame).
+  void remesh_garments(FrameStats& stats);
   // View mode: whether every garment of the group is beyond what the cameras resolve now (the
-  // far level of detail, view.far_remesh_every); false while the drape settles.
+  // far level of detail, view.far_remesh_every); false while the drape settles and before
+  // view.far_after.
   bool beyond_resolution_now() const;
   // Sizes and remeshes every garment, keeping each as sized, before its remesh, in
   // `started_with` (one slot a garment): the fallback goes on with this frame's factors. No flip
