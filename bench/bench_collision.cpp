@@ -111,7 +111,7 @@ void BM_Candidates(benchmark::State& state) {
     return b;
   }));
   std::vector<std::unique_ptr<Bvh>> body_faces, body_edges;
-  std::vector<const Bvh*> obstacle_faces, obstacle_edges;
+  std::vector<const Bvh*> obstacle_vertices, obstacle_faces, obstacle_edges;
   for (std::size_t o = 0; o < d.body.size(); ++o) {
     body_faces.push_back(std::make_unique<Bvh>(leaf_boxes(d.body[o].faces.size(), 1, [&](std::size_t i) {
       Aabb b;
@@ -120,7 +120,7 @@ void BM_Candidates(benchmark::State& state) {
     })));
     obstacle_faces.push_back(body_faces.back().get());
   }
-  const CandidateTrees trees{d.cloth_faces, edges, used, faces, edge_tree, obstacle_faces, obstacle_edges};
+  const CandidateTrees trees{d.cloth_faces, edges, used, faces, edge_tree, obstacle_vertices, obstacle_faces, obstacle_edges};
   double vertex_pairs = 0, edge_pairs = 0, tv = 0, te = 0;
   for (auto _ : state) {
     std::vector<int64_t> vf(used.size(), 0), ee(edges.size(), 0);
@@ -136,7 +136,7 @@ void BM_Candidates(benchmark::State& state) {
         [&](int32_t v, int32_t) { ++vf[static_cast<std::size_t>(v)]; }, [&](int32_t v, std::size_t, int32_t) { ++vf[static_cast<std::size_t>(v)]; });
     auto t1 = std::chrono::steady_clock::now();
     edge_edge_candidates(
-        trees, nullptr, nullptr, d.band, 1, [](int32_t) { return Aabb(); }, [&](int32_t a, int32_t) { ++ee[static_cast<std::size_t>(a)]; },
+        trees, nullptr, nullptr, d.band, 1, [&](int32_t a, int32_t) { ++ee[static_cast<std::size_t>(a)]; },
         [&](std::size_t, int32_t a, int32_t) { ++ee[static_cast<std::size_t>(a)]; });
     auto t2 = std::chrono::steady_clock::now();
     tv += std::chrono::duration<double, std::milli>(t1 - t0).count();

@@ -36,13 +36,15 @@ std::vector<T> in_key_order(std::vector<std::pair<Key, T>> keyed) {
 inline constexpr int kCandidateTraversalUnits = 64;
 
 // What one detection searches: the cloth's faces and edges (global node ids), the nodes its
-// faces use, hierarchies over the boxes of this detection, and each obstacle's.
+// faces use, hierarchies over the boxes of this detection, and each obstacle's (over its
+// vertices, faces and edges).
 struct CandidateTrees {
   const std::vector<std::array<int32_t, 3>>& cloth_faces;
   const std::vector<std::array<int32_t, 2>>& cloth_edges;
   const std::vector<char>& node_used;  // per cloth node: a face uses it
   const Bvh& cloth_face_tree;
   const Bvh& cloth_edge_tree;
+  const std::vector<const Bvh*>& obstacle_vertex_trees;
   const std::vector<const Bvh*>& obstacle_face_trees;
   const std::vector<const Bvh*>& obstacle_edge_trees;
 };
@@ -100,6 +102,9 @@ class MovedPrimitives {
   void edges_near(const Aabb& box, F&& f) const {
     edge_tree_.query(box, [&](int32_t k) { f(edges_[static_cast<std::size_t>(k)]); });
   }
+  // The hierarchy over the moved cloth faces' boxes, and the cloth face of its primitive k.
+  const Bvh& face_tree() const { return face_tree_; }
+  int32_t face(int32_t k) const { return faces_[static_cast<std::size_t>(k)]; }
 
  private:
   static std::vector<Aabb> boxes_of(const std::vector<int32_t>& items, const std::vector<Aabb>& boxes);
@@ -139,50 +144,48 @@ void vertex_face_candidates(const CandidateTrees& t, const MovedPrimitives* move
   }
 }
 
-// Obstacle vertex-cloth face candidates: obstacle by obstacle, its vertices in parallel,
-// cloth_face(o, v, f) for each cloth face whose box meets vertex_box(o, v); with `moved`, only
-// the moved cloth faces. `num_vertices[o]`: obstacle o's vertex count.
-template <class VertexBox, class ClothFace>
-void obstacle_vertex_candidates(const CandidateTrees& t, const std::vector<std::size_t>& num_vertices, const MovedPrimitives* moved,
-                                int threads, VertexBox&& vertex_box, ClothFace&& cloth_face) {
-  for (std::size_t o = 0; o < num_vertices.size(); ++o) {
-    const auto n = static_cast<int32_t>(num_vertices[o]);
-#pragma omp parallel for schedule(dynamic, 128) num_threads(threads)
-    for (int32_t v = 0; v < n; ++v) {
-      const Aabb box = vertex_box(o, v);
-      auto face = [&](int32_t f) { cloth_face(o, v, f); };
-      if (moved == nullptr) t.cloth_face_tree.query(box, face);
-      else moved->faces_near(box, face);
-    }
-  }
+// Obstacle vertex-cloth face candidates: obstacle by obstacle, cloth_face(o, v, f) for each
+// vertex v and cloth face f whose boxes meet, the vertex's box grown by `pad`; with `moved`, only
+// the moved cloth faces. The obstacle's vertex hierarchy descends together with the cloth's from
+// fixed subtrees in parallel (most of a body's vertices are far from its garment, and whole limbs
+// are passed over at once), each vertex's candidates met by the one subtree that holds it.
+template <class ClothFace>
+void obstacle_vertex_candidates(const CandidateTrees& t, const MovedPrimitives* moved, double pad, int threads, ClothFace&& cloth_face) {
+  const std::vector<const Bvh*> faces{moved != nullptr ? &moved->face_tree() : &t.cloth_face_tree};
+  for (std::size_t o = 0; o < t.obstacle_vertex_trees.size(); ++o)
+    pairs_by_subtree(*t.obstacle_vertex_trees[o], Within::No, faces, pad, kCandidateTraversalUnits, threads, [](int32_t, int32_t) {},
+                     [&](std::size_t, int32_t v, int32_t k) { cloth_face(o, v, moved != nullptr ? moved->face(k) : k); });
 }
 
 // Edge-edge candidates: cloth_pair(ea, eb) once for each pair of cloth edges without a shared
 // node whose boxes meet, listed under ea, and obstacle_pair(o, ea, eb) for each cloth edge ea and
-// edge eb of obstacle o whose boxes meet. Without `moved`, the cloth edge hierarchy descends
-// together with itself and each obstacle's from fixed subtrees in parallel, boxes grown by `pad`,
-// each cloth pair met from its earlier edge in leaf order and a cloth edge's pairs listed by the
-// one subtree that holds it. With `moved` (and boxes already padded), every cloth edge queries
-// with edge_box(e), each pair from its lower-numbered edge, and only edges with a moved node meet
-// the obstacles; with `listed` too (a first round), an edge that did not move meets its listed
-// edges that did not move (each such pair under the edge it is listed under) and the obstacles.
-template <class EdgeBox, class ClothPair, class ObstaclePair>
+// edge eb of obstacle o whose boxes meet, a cloth edge's box its box in the cloth edge hierarchy
+// grown by `pad`. The cloth edge hierarchy descends together with each obstacle's from fixed
+// subtrees in parallel, a cloth edge's obstacle pairs met by the one subtree that holds it; without
+// `moved`, with itself too, each cloth pair met from its earlier edge in leaf order and listed by
+// the one subtree that holds that edge. With `moved`, every cloth edge queries the cloth
+// hierarchy instead, each pair from its lower-numbered edge, and only edges with a moved node meet
+// the obstacles, one query each; with `listed` too (a first round), an edge that did not move
+// meets its listed edges that did not move (each such pair under the edge it is listed under),
+// and every edge meets the obstacles by the descent.
+template <class ClothPair, class ObstaclePair>
 void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved, const KeptClothPairs* listed, double pad, int threads,
-                          EdgeBox&& edge_box, ClothPair&& cloth_pair, ObstaclePair&& obstacle_pair) {
+                          ClothPair&& cloth_pair, ObstaclePair&& obstacle_pair) {
   auto cloth = [&](int32_t ea, int32_t eb) {
     const auto& a = t.cloth_edges[static_cast<std::size_t>(ea)];
     const auto& b = t.cloth_edges[static_cast<std::size_t>(eb)];
     if (a[0] != b[0] && a[0] != b[1] && a[1] != b[0] && a[1] != b[1]) cloth_pair(ea, eb);
   };
-  if (moved == nullptr) {
-    pairs_by_subtree(t.cloth_edge_tree, t.obstacle_edge_trees, pad, kCandidateTraversalUnits, threads, cloth, obstacle_pair);
-    return;
-  }
+  if (moved == nullptr || listed != nullptr)
+    pairs_by_subtree(t.cloth_edge_tree, moved == nullptr ? Within::Yes : Within::No, t.obstacle_edge_trees, pad, kCandidateTraversalUnits,
+                     threads, cloth, obstacle_pair);
+  if (moved == nullptr) return;
   const auto num_edges = static_cast<int32_t>(t.cloth_edges.size());
 #pragma omp parallel for schedule(dynamic, 128) num_threads(threads)
   for (int32_t ea = 0; ea < num_edges; ++ea) {
     const auto& a = t.cloth_edges[static_cast<std::size_t>(ea)];
-    const Aabb box = edge_box(ea);
+    Aabb box = t.cloth_edge_tree.leaf_boxes()[static_cast<std::size_t>(ea)];
+    box.pad(pad);
     auto later = [&](int32_t eb) {
       if (eb > ea) cloth(ea, eb);
     };
@@ -194,9 +197,9 @@ void edge_edge_candidates(const CandidateTrees& t, const MovedPrimitives* moved,
         const auto& b = t.cloth_edges[static_cast<std::size_t>(eb)];
         if (!moved->any({b[0], b[1]}) && t.cloth_edge_tree.leaf_boxes()[static_cast<std::size_t>(eb)].overlaps(box)) cloth_pair(ea, eb);
       }
-    if (!all && listed == nullptr) continue;
-    for (std::size_t o = 0; o < t.obstacle_edge_trees.size(); ++o)
-      t.obstacle_edge_trees[o]->query(box, [&](int32_t eo) { obstacle_pair(o, ea, eo); });
+    if (all && listed == nullptr)
+      for (std::size_t o = 0; o < t.obstacle_edge_trees.size(); ++o)
+        t.obstacle_edge_trees[o]->query(box, [&](int32_t eo) { obstacle_pair(o, ea, eo); });
   }
 }
 

@@ -120,8 +120,7 @@ class ImpactRound {
   // `only_moved` and `listed` as for vertex_face_candidates: none in a first round that searches
   // everything, both in one that takes a proximity search's kept pairs, `only_moved` alone in a
   // later round. Obstacle vertices meet every cloth face in a first round.
-  void detect(const CandidateTrees& trees, const MovedPrimitives* only_moved, const KeptClothPairs* listed,
-              const std::vector<ObstacleTrees>& obstacle_trees, const std::vector<Aabb>& edge_boxes, int threads) {
+  void detect(const CandidateTrees& trees, const MovedPrimitives* only_moved, const KeptClothPairs* listed, int threads) {
     vertex_hits_.assign(trees.node_used.size(), Hits{});
     vertex_face_candidates(
         trees, only_moved, listed, threads, [&](int32_t v) { return path_box(s_, {PointRef{-1, v}}); },
@@ -130,20 +129,14 @@ class ImpactRound {
           vf({-1, v}, obstacle_tri(o, f), {v, static_cast<int32_t>(o), f}, vertex_hits_[static_cast<std::size_t>(v)]);
         });
     obstacle_hits_.assign(s_.obstacles.size(), {});
-    std::vector<std::size_t> obstacle_vertices;
-    for (std::size_t o = 0; o < s_.obstacles.size(); ++o) {
-      obstacle_vertices.push_back(s_.obstacle_start[o].size());
-      obstacle_hits_[o].resize(s_.obstacle_start[o].size());
-    }
+    for (std::size_t o = 0; o < s_.obstacles.size(); ++o) obstacle_hits_[o].resize(s_.obstacle_start[o].size());
     obstacle_vertex_candidates(
-        trees, obstacle_vertices, listed != nullptr ? nullptr : only_moved, threads, [&](std::size_t o, int32_t v) { return obstacle_trees[o].vertex_box(v); },
-        [&](std::size_t o, int32_t v, int32_t f) {
+        trees, listed != nullptr ? nullptr : only_moved, 0.0, threads, [&](std::size_t o, int32_t v, int32_t f) {
           vf({static_cast<int32_t>(o), v}, cloth_tri(f), {v, static_cast<int32_t>(o), f}, obstacle_hits_[o][static_cast<std::size_t>(v)]);
         });
     edge_hits_.assign(s_.cloth_edges.size(), Hits{});
     edge_edge_candidates(
-        trees, only_moved, listed, 0.0, threads, [&](int32_t e) { return edge_boxes[static_cast<std::size_t>(e)]; },
-        [&](int32_t met_by, int32_t other) { cloth_edges(met_by, other); },
+        trees, only_moved, listed, 0.0, threads, [&](int32_t met_by, int32_t other) { cloth_edges(met_by, other); },
         [&](std::size_t o, int32_t ea, int32_t eo) { obstacle_edges(o, ea, eo); });
   }
 
@@ -282,9 +275,10 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
   CollisionStats stats;
   const SweptScene scene{cloth_faces_, cloth_edges_, obstacles_, obstacle_edges_, x_start, x_end, fixed, obstacle_start, obstacle_end,
                          1e-3 * params.thickness};
-  std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
+  std::vector<const Bvh*> obstacle_vertex_bvh, obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
     obstacle_trees_[o].sweep(obstacles_[o].faces, obstacle_edges_[o], obstacle_start[o], obstacle_end[o], scene.eta, params.threads);
+    obstacle_vertex_bvh.push_back(&obstacle_trees_[o].vertices());
     obstacle_face_bvh.push_back(&obstacle_trees_[o].faces());
     obstacle_edge_bvh.push_back(&obstacle_trees_[o].edges());
   }
@@ -307,7 +301,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
       return path_box(scene, {{-1, e[0]}, {-1, e[1]}});
     });
     const CandidateTrees trees{cloth_faces_, cloth_edges_, cloth_node_used, cloth_face_tree_.update(face_boxes, params.threads),
-                               cloth_edge_tree_.update(edge_boxes, params.threads), obstacle_face_bvh, obstacle_edge_bvh};
+                               cloth_edge_tree_.update(edge_boxes, params.threads), obstacle_vertex_bvh, obstacle_face_bvh, obstacle_edge_bvh};
     // After the first round only pairs with a node that a projection moved can hold a new impact.
     // In the first, the lists of the last proximity search made hold the cloth pairs of the
     // nodes that stay near where it was made.
@@ -320,8 +314,7 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
     }
     if (round > 0) moved_primitives.emplace(moved, trees, face_boxes, edge_boxes);
     ImpactRound detection(scene, budget);
-    detection.detect(trees, moved_primitives ? &*moved_primitives : nullptr, listed ? &kept_pairs_ : nullptr, obstacle_trees_, edge_boxes,
-                     params.threads);
+    detection.detect(trees, moved_primitives ? &*moved_primitives : nullptr, listed ? &kept_pairs_ : nullptr, params.threads);
     const int64_t met = detection.met();
     stats.candidates = std::max(stats.candidates, met);
     if (met > budget) {

@@ -1,19 +1,21 @@
 // An obstacle's hierarchies, refit from its vertices' boxes and reused where a sweep ended.
 #include "collision/obstacle_trees.hpp"
 
+#include <utility>
+
 namespace vdc {
 
 void ObstacleTrees::sweep(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<std::array<int32_t, 2>>& edges,
                           const std::vector<Vec3>& start, const std::vector<Vec3>& end, double pad, int threads) {
   // A primitive's box is the union of its vertices' boxes, so each vertex's path is bounded once.
-  vertex_boxes_ = leaf_boxes(end.size(), threads, [&](std::size_t i) {
+  std::vector<Aabb> vertex_boxes = leaf_boxes(end.size(), threads, [&](std::size_t i) {
     Aabb b;
     b.grow(start[i]);
     b.grow(end[i]);
     b.pad(pad);
     return b;
   });
-  auto box = [&](int32_t i) -> const Aabb& { return vertex_boxes_[static_cast<std::size_t>(i)]; };
+  auto box = [&](int32_t i) -> const Aabb& { return vertex_boxes[static_cast<std::size_t>(i)]; };
   faces_ = &face_tree_.update(leaf_boxes(faces.size(), threads, [&](std::size_t i) {
     Aabb b = box(faces[i][0]);
     b.grow(box(faces[i][1]));
@@ -25,6 +27,7 @@ void ObstacleTrees::sweep(const std::vector<std::array<int32_t, 3>>& faces, cons
     b.grow(box(edges[i][1]));
     return b;
   }), threads);
+  vertices_ = &vertex_tree_.update(std::move(vertex_boxes), threads);
   held_ = end;
 }
 

@@ -1,5 +1,5 @@
-// An obstacle's face and edge hierarchies for collision detection (Bridson et al. 2002, section
-// 7.1: boxes over a step's sweep), refit from its vertices' boxes, and kept between queries: a
+// An obstacle's vertex, face and edge hierarchies for collision detection (Bridson et al. 2002,
+// section 7.1: boxes over a step's sweep), refit from its vertices' boxes, and kept between queries: a
 // query at the positions where the last refit's sweep ended (the next step's proximity search
 // after this step's continuous detection) takes the hierarchies as they are, since every swept
 // box holds its end positions. Only the candidates change, never the pairs found.
@@ -23,16 +23,15 @@ class ObstacleTrees {
   void hold(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<std::array<int32_t, 2>>& edges,
             const std::vector<Vec3>& x, int threads);
 
+  const Bvh& vertices() const { return *vertices_; }
   const Bvh& faces() const { return *faces_; }
   const Bvh& edges() const { return *edges_; }
-  // Box of vertex i in the last refit (its path, padded).
-  const Aabb& vertex_box(int32_t i) const { return vertex_boxes_[static_cast<std::size_t>(i)]; }
 
  private:
-  RefitBvh face_tree_, edge_tree_;
+  RefitBvh vertex_tree_, face_tree_, edge_tree_;
+  const Bvh* vertices_ = nullptr;
   const Bvh* faces_ = nullptr;
   const Bvh* edges_ = nullptr;
-  std::vector<Aabb> vertex_boxes_;
   std::vector<Vec3> held_;  // where the last refit's sweep ended
 };
 

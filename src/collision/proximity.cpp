@@ -99,7 +99,6 @@ class ProximitySearch {
         outwards_(num_obstacles_), edge_pairs_(scene.cloth_edges.size()) {
     for (std::size_t o = 0; o < num_obstacles_; ++o) {
       const std::size_t n = s_.obstacle_x[o].size();
-      obstacle_vertices_.push_back(n);
       obstacle_vertex_pairs_[o].resize(n);
       nearest_cloth_[o].assign(n, s_.band);
       nearest_cloth_face_[o].assign(n, -1);
@@ -129,12 +128,10 @@ class ProximitySearch {
         });
   }
 
-  // Obstacle vertices: the nearest cloth face.
+  // Obstacle vertices: the nearest cloth face. The obstacles' vertex hierarchies hold their
+  // vertices at their positions, unpadded: grown by the band, each box is the vertex's point box.
   void obstacle_vertices(const CandidateTrees& trees, int threads) {
-    obstacle_vertex_candidates(
-        trees, obstacle_vertices_, nullptr, threads,
-        [&](std::size_t o, int32_t i) { return point_box(s_.obstacle_x[o][static_cast<std::size_t>(i)], s_.band); },
-        [&](std::size_t o, int32_t i, int32_t f) { obstacle_vertex_face(o, i, f); });
+    obstacle_vertex_candidates(trees, nullptr, s_.band, threads, [&](std::size_t o, int32_t i, int32_t f) { obstacle_vertex_face(o, i, f); });
   }
 
   // Edges: pairs whose closest points are inside both edges, each cloth pair once; the cloth
@@ -148,11 +145,11 @@ class ProximitySearch {
     auto cloth = [&](int32_t met_by, int32_t other) { cloth_edge_pair(met_by, other); };
     auto obstacle = [&](std::size_t o, int32_t ea, int32_t eb) { obstacle_edge_pair(o, ea, eb); };
     if (far != nullptr) {
-      edge_edge_candidates(trees, far, &kept_, 0.0, threads, grown, cloth, obstacle);
+      edge_edge_candidates(trees, far, &kept_, s_.band, threads, cloth, obstacle);
       return;
     }
     edge_edge_candidates(
-        trees, nullptr, nullptr, kept_.pad, threads, [](int32_t) { return Aabb(); },
+        trees, nullptr, nullptr, kept_.pad, threads,
         [&](int32_t met_by, int32_t other) {
           kept_.edge_edges[static_cast<std::size_t>(met_by)].push_back(other);
           if (grown(met_by).overlaps(edge_boxes[static_cast<std::size_t>(other)])) cloth(met_by, other);
@@ -338,7 +335,6 @@ class ProximitySearch {
   std::vector<std::optional<ProximityPair>> vertex_pairs_;  // per cloth vertex: two cloth sides, then each obstacle
   std::vector<int32_t> slot_face_;          // the face each slot holds
   std::vector<double> nearest_obstacle_;    // per cloth vertex and obstacle
-  std::vector<std::size_t> obstacle_vertices_;
   std::vector<std::vector<std::optional<ProximityPair>>> obstacle_vertex_pairs_;
   std::vector<std::vector<double>> nearest_cloth_;
   std::vector<std::vector<int32_t>> nearest_cloth_face_;
@@ -359,16 +355,17 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   const std::vector<Aabb> edge_boxes = leaf_boxes(cloth_edges_.size(), threads, [&](std::size_t i) { return box_of({cx(cloth_edges_[i][0]), cx(cloth_edges_[i][1])}); });
   const Bvh& face_bvh = cloth_face_tree_.update(face_boxes, threads);
   const Bvh& edge_bvh = cloth_edge_tree_.update(edge_boxes, threads);
-  std::vector<const Bvh*> obstacle_face_bvh, obstacle_edge_bvh;
+  std::vector<const Bvh*> obstacle_vertex_bvh, obstacle_face_bvh, obstacle_edge_bvh;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
     obstacle_trees_[o].hold(obstacles_[o].faces, obstacle_edges_[o], obstacle_x[o], threads);
+    obstacle_vertex_bvh.push_back(&obstacle_trees_[o].vertices());
     obstacle_face_bvh.push_back(&obstacle_trees_[o].faces());
     obstacle_edge_bvh.push_back(&obstacle_trees_[o].edges());
   }
   std::vector<char> used(static_cast<std::size_t>(num_nodes_), 0);
   for (const auto& f : cloth_faces_)
     for (int32_t n : f) used[static_cast<std::size_t>(n)] = 1;
-  const CandidateTrees trees{cloth_faces_, cloth_edges_, used, face_bvh, edge_bvh, obstacle_face_bvh, obstacle_edge_bvh};
+  const CandidateTrees trees{cloth_faces_, cloth_edges_, used, face_bvh, edge_bvh, obstacle_vertex_bvh, obstacle_face_bvh, obstacle_edge_bvh};
   const ProximityScene scene{cloth_faces_, cloth_edges_, obstacles_, obstacle_edges_, obstacle_adjacency_, x, v, fixed,
                              obstacle_x, obstacle_v, band};
   // The kept lists answer while at most one node in sixteen has gone beyond their reach; else

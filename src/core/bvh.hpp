@@ -211,20 +211,21 @@ class Bvh {
   double looseness_ = 0;
 };
 
-// Every overlapping pair within `tree` once, self_pair(i, j), and between `tree` and each of
-// `others`, cross_pair(o, i, j), `tree`'s boxes grown by `pad`: descents from `units` fixed
-// subtrees of `tree` on `threads` threads. All pairs of a primitive i of `tree` come from the one
-// subtree that holds it, in an order that does not depend on the thread count, so per-primitive
-// outputs need no lock.
+// Every overlapping pair between `tree` and each of `others`, cross_pair(o, i, j), and with
+// `Within` also every pair within `tree` once, self_pair(i, j), `tree`'s boxes grown by `pad`:
+// descents from `units` fixed subtrees of `tree` on `threads` threads. All pairs of a primitive i
+// of `tree` come from the one subtree that holds it, in an order that does not depend on the
+// thread count, so per-primitive outputs need no lock.
+enum class Within { Yes, No };
 template <class SelfPair, class CrossPair>
-void pairs_by_subtree(const Bvh& tree, const std::vector<const Bvh*>& others, double pad, int units, int threads, SelfPair&& self_pair,
-                      CrossPair&& cross_pair) {
+void pairs_by_subtree(const Bvh& tree, Within within, const std::vector<const Bvh*>& others, double pad, int units, int threads,
+                      SelfPair&& self_pair, CrossPair&& cross_pair) {
   const std::vector<int32_t> roots = tree.subtrees(units);
   const auto n = static_cast<int64_t>(roots.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (int64_t u = 0; u < n; ++u) {
     const int32_t root = roots[static_cast<std::size_t>(u)];
-    tree.later_pairs_under(root, pad, self_pair);
+    if (within == Within::Yes) tree.later_pairs_under(root, pad, self_pair);
     for (std::size_t o = 0; o < others.size(); ++o)
       tree.pairs_under(root, *others[o], pad, [&](int32_t i, int32_t j) { cross_pair(o, i, j); });
   }

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <random>
 #include <set>
@@ -45,18 +46,24 @@ class CandidatesTest : public ::testing::Test {
     for (const auto& e : obstacle_edges_) obstacle_edge_boxes_.push_back(box({obstacle_x_[e[0]], obstacle_x_[e[1]]}));
     face_tree_ = std::make_unique<Bvh>(face_boxes_);
     edge_tree_ = std::make_unique<Bvh>(edge_boxes_);
+    std::vector<Aabb> obstacle_points;  // unpadded: the candidate stage grows them by its pad
+    for (const Vec3& p : obstacle_x_) obstacle_points.push_back(box({p}, 0.0));
+    obstacle_vertex_tree_ = std::make_unique<Bvh>(obstacle_points);
     obstacle_face_tree_ = std::make_unique<Bvh>(obstacle_face_boxes_);
     obstacle_edge_tree_ = std::make_unique<Bvh>(obstacle_edge_boxes_);
+    obstacle_vertex_trees_ = {obstacle_vertex_tree_.get()};
     obstacle_face_trees_ = {obstacle_face_tree_.get()};
     obstacle_edge_trees_ = {obstacle_edge_tree_.get()};
   }
-  static Aabb box(std::initializer_list<Vec3> points) {
+  static Aabb box(std::initializer_list<Vec3> points, double pad = kPad) {
     Aabb b;
     for (const Vec3& p : points) b.grow(p);
-    b.pad(0.05);
+    b.pad(pad);
     return b;
   }
-  CandidateTrees trees() const { return {faces_, edges_, used_, *face_tree_, *edge_tree_, obstacle_face_trees_, obstacle_edge_trees_}; }
+  CandidateTrees trees() const {
+    return {faces_, edges_, used_, *face_tree_, *edge_tree_, obstacle_vertex_trees_, obstacle_face_trees_, obstacle_edge_trees_};
+  }
   static bool shares(const std::array<int32_t, 3>& f, int32_t v) { return f[0] == v || f[1] == v || f[2] == v; }
   static bool shares(const std::array<int32_t, 2>& a, const std::array<int32_t, 2>& b) {
     return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1];
@@ -82,19 +89,17 @@ class CandidatesTest : public ::testing::Test {
   Found obstacle_vertices(const MovedPrimitives* moved, int threads) const {
     Found found;
     std::mutex lock;
-    obstacle_vertex_candidates(
-        trees(), {obstacle_x_.size()}, moved, threads, [&](std::size_t, int32_t v) { return box({obstacle_x_[static_cast<std::size_t>(v)]}); },
-        [&](std::size_t o, int32_t v, int32_t f) {
-          std::lock_guard<std::mutex> hold(lock);
-          found.insert({static_cast<int>(o), v, f});
-        });
+    obstacle_vertex_candidates(trees(), moved, kPad, threads, [&](std::size_t o, int32_t v, int32_t f) {
+      std::lock_guard<std::mutex> hold(lock);
+      found.insert({static_cast<int>(o), v, f});
+    });
     return found;
   }
   Found edge_pairs(const MovedPrimitives* moved, int threads, const KeptClothPairs* listed = nullptr) const {
     Found found;
     std::mutex lock;
     edge_edge_candidates(
-        trees(), moved, listed, 0.0, threads, [&](int32_t e) { return edge_boxes_[static_cast<std::size_t>(e)]; },
+        trees(), moved, listed, 0.0, threads,
         [&](int32_t a, int32_t b) {
           std::lock_guard<std::mutex> hold(lock);
           found.insert({-1, std::min(a, b), std::max(a, b)});
@@ -111,8 +116,9 @@ class CandidatesTest : public ::testing::Test {
   std::vector<std::array<int32_t, 2>> edges_, obstacle_edges_;
   std::vector<char> used_;
   std::vector<Aabb> face_boxes_, edge_boxes_, obstacle_face_boxes_, obstacle_edge_boxes_;
-  std::unique_ptr<Bvh> face_tree_, edge_tree_, obstacle_face_tree_, obstacle_edge_tree_;
-  std::vector<const Bvh*> obstacle_face_trees_, obstacle_edge_trees_;
+  static constexpr double kPad = 0.05;
+  std::unique_ptr<Bvh> face_tree_, edge_tree_, obstacle_vertex_tree_, obstacle_face_tree_, obstacle_edge_tree_;
+  std::vector<const Bvh*> obstacle_vertex_trees_, obstacle_face_trees_, obstacle_edge_trees_;
 };
 
 TEST_F(CandidatesTest, EveryQueryFindsExactlyTheBoxesItMeets) {
@@ -166,6 +172,53 @@ TEST_F(CandidatesTest, EveryQueryFindsExactlyTheBoxesItMeets) {
   EXPECT_EQ(edge_pairs(&only_moved, 2), ee_moved);
 }
 
+// A body-sized obstacle: 1,600 vertices on a wavy sheet crossing the cloth, their hierarchy
+// descended with the cloth's from many subtrees. Each vertex meets exactly the cloth faces whose
+// boxes meet its box grown by the pad (counted against all pairs), each pair once, on one and
+// three threads; after a round that moved three nodes, exactly the moved faces among them.
+TEST_F(CandidatesTest, ObstacleVerticesDescendingWithTheClothFindExactlyTheBoxesTheyMeet) {
+  constexpr int kSide = 40;
+  std::vector<Vec3> body;
+  std::vector<Aabb> points;
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i) {
+      const double u = -0.2 + 1.0 * i / (kSide - 1), w = -0.2 + 1.0 * j / (kSide - 1);
+      body.emplace_back(u, 0.12 * std::sin(9.0 * u) * std::cos(7.0 * w), w);
+      points.push_back(box({body.back()}, 0.0));
+    }
+  const Bvh body_tree(points);
+  const std::vector<const Bvh*> vertex_trees{&body_tree};
+  ASSERT_GT(body_tree.subtrees(kCandidateTraversalUnits).size(), 32u);
+  const CandidateTrees t{faces_, edges_, used_, *face_tree_, *edge_tree_, vertex_trees, obstacle_face_trees_, obstacle_edge_trees_};
+  auto found_with = [&](const MovedPrimitives* moved, int threads) {
+    Found found;
+    std::mutex lock;
+    obstacle_vertex_candidates(t, moved, kPad, threads, [&](std::size_t o, int32_t v, int32_t f) {
+      std::lock_guard<std::mutex> hold(lock);
+      found.insert({static_cast<int>(o), v, f});
+    });
+    return found;
+  };
+  std::vector<char> moved(x_.size(), 0);
+  for (const int n : {8, 9, 30}) moved[static_cast<std::size_t>(n)] = 1;
+  auto moved_face = [&](int f) { return moved[faces_[f][0]] || moved[faces_[f][1]] || moved[faces_[f][2]]; };
+  Found all, of_moved;
+  for (int32_t v = 0; v < static_cast<int32_t>(body.size()); ++v)
+    for (int32_t f = 0; f < static_cast<int32_t>(faces_.size()); ++f)
+      if (box({body[static_cast<std::size_t>(v)]}).overlaps(face_boxes_[static_cast<std::size_t>(f)])) {
+        all.insert({0, v, f});
+        if (moved_face(f)) of_moved.insert({0, v, f});
+      }
+  EXPECT_GT(all.size(), 1000u);
+  EXPECT_LT(all.size(), body.size() * faces_.size() / 4);
+  EXPECT_GT(of_moved.size(), 0u);
+  const MovedPrimitives only_moved(moved, trees(), face_boxes_, edge_boxes_);
+  for (const int threads : {1, 3}) {
+    EXPECT_EQ(found_with(nullptr, threads), all) << threads;  // a multiset: each pair once
+    EXPECT_EQ(found_with(&only_moved, threads), of_moved) << threads;
+  }
+}
+
 // A first round of continuous detection from the cloth pairs a proximity search met (pad 0.05)
 // some steps before, the sheet moved on since: with most nodes near where the search found them
 // once the common motion is taken out and three moved far, vertex-face and edge-edge candidates
@@ -188,7 +241,7 @@ TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSwep
   const auto start_faces = boxes_of(faces_, [&](const auto& f) { return hull({x_[f[0]], x_[f[1]], x_[f[2]]}, 0); });
   const auto start_edges = boxes_of(edges_, [&](const auto& e) { return hull({x_[e[0]], x_[e[1]]}, 0); });
   const auto start_face_tree = bvh(start_faces), start_edge_tree = bvh(start_edges);
-  const CandidateTrees start{faces_, edges_, used_, *start_face_tree, *start_edge_tree, obstacle_face_trees_, obstacle_edge_trees_};
+  const CandidateTrees start{faces_, edges_, used_, *start_face_tree, *start_edge_tree, obstacle_vertex_trees_, obstacle_face_trees_, obstacle_edge_trees_};
   KeptClothPairs kept;
   kept.clear(x_.size(), edges_.size());
   kept.pad = pad;
@@ -196,7 +249,7 @@ TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSwep
       start, nullptr, nullptr, 2, [&](int32_t v) { return hull({x_[static_cast<std::size_t>(v)]}, pad); },
       [&](int32_t v, int32_t f) { kept.node_faces[static_cast<std::size_t>(v)].push_back(f); }, [](int32_t, std::size_t, int32_t) {});
   edge_edge_candidates(
-      start, nullptr, nullptr, pad, 2, [](int32_t) { return Aabb(); },
+      start, nullptr, nullptr, pad, 2,
       [&](int32_t a, int32_t b) { kept.edge_edges[static_cast<std::size_t>(a)].push_back(b); }, [](std::size_t, int32_t, int32_t) {});
   // Steps later the whole sheet has moved 0.3 m, far past the lists' reach: this step starts
   // there and moves every node up to a third of the reach in each coordinate, nodes 8, 24 and 40
@@ -214,7 +267,7 @@ TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSwep
       boxes_of(faces_, [&](const auto& f) { return hull({begin[f[0]], begin[f[1]], begin[f[2]], end[f[0]], end[f[1]], end[f[2]]}, eta); });
   const auto swept_edges = boxes_of(edges_, [&](const auto& e) { return hull({begin[e[0]], begin[e[1]], end[e[0]], end[e[1]]}, eta); });
   const auto face_tree = bvh(swept_faces), edge_tree = bvh(swept_edges);
-  const CandidateTrees swept{faces_, edges_, used_, *face_tree, *edge_tree, obstacle_face_trees_, obstacle_edge_trees_};
+  const CandidateTrees swept{faces_, edges_, used_, *face_tree, *edge_tree, obstacle_vertex_trees_, obstacle_face_trees_, obstacle_edge_trees_};
   auto stacked = [](const std::vector<Vec3>& p) {
     Eigen::VectorXd v(3 * static_cast<Eigen::Index>(p.size()));
     for (std::size_t n = 0; n < p.size(); ++n) v.segment<3>(3 * static_cast<Eigen::Index>(n)) = p[n];
@@ -242,7 +295,7 @@ TEST_F(CandidatesTest, AFirstRoundFromTheProximityListsFindsWhatASearchOfTheSwep
           swept, m, listed, threads, vertex_box, [&](int32_t v, int32_t f) { add_vf(-1, v, f); },
           [&](int32_t v, std::size_t o, int32_t f) { add_vf(static_cast<int>(o), v, f); });
       edge_edge_candidates(
-          swept, m, listed, 0.0, threads, [&](int32_t e) { return swept_edges[static_cast<std::size_t>(e)]; },
+          swept, m, listed, 0.0, threads,
           [&](int32_t a, int32_t b) { add_ee(-1, std::min(a, b), std::max(a, b)); },
           [&](std::size_t o, int32_t a, int32_t b) { add_ee(static_cast<int>(o), a, b); });
     };
