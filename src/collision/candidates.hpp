@@ -2,9 +2,11 @@
 // 2002 (sections 7.2 and 7.4): the cloth and obstacle primitives whose boxes meet, handed to
 // the narrow phase of proximity detection (proximity.cpp) and of impact detection (collider.cpp)
 // alike. Pairs that share a cloth node are never candidates. A query primitive's candidates come
-// one after another, in the hierarchies' order; query primitives are taken in parallel, so a
-// caller writes only to the query primitive's own results, and what it finds does not depend on
-// the thread count. Nor on the hierarchies' shape: results met in their order are put in a key
+// one after another, in the hierarchies' order, from its own query or from the one fixed subtree
+// of a simultaneous descent that holds it; queries and subtrees are taken in parallel (a cloth
+// edge's cloth and obstacle pairs, where they come from two passes, one pass after the other), so
+// a caller writes only to the query primitive's own results, and what it finds does not depend
+// on the thread count. Nor on the hierarchies' shape: results met in their order are put in a key
 // order (in_key_order) before they are used.
 #pragma once
 #include <array>

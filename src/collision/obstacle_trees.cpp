@@ -27,14 +27,26 @@ void ObstacleTrees::sweep(const std::vector<std::array<int32_t, 3>>& faces, cons
     b.grow(box(edges[i][1]));
     return b;
   }), threads);
-  vertices_ = &vertex_tree_.update(std::move(vertex_boxes), threads);
+  vertices_ = &vertex_tree_.update_with(std::move(vertex_boxes), face_tree_.rebuilt(), threads);
+  vertices_at_points_ = pad == 0.0 && start == end;
   held_ = end;
 }
 
 void ObstacleTrees::hold(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<std::array<int32_t, 2>>& edges,
                          const std::vector<Vec3>& x, int threads) {
-  if (faces_ != nullptr && held_ == x) return;
-  sweep(faces, edges, x, x, 0.0, threads);
+  if (faces_ == nullptr || held_ != x) {
+    sweep(faces, edges, x, x, 0.0, threads);
+    return;
+  }
+  if (vertices_at_points_) return;
+  // A vertex's swept path would meet faces a step's motion away from it: the vertices are refit
+  // to their points, the faces and edges kept as swept (their boxes are wider than a step's path).
+  vertices_ = &vertex_tree_.update_with(leaf_boxes(x.size(), threads, [&](std::size_t i) {
+    Aabb b;
+    b.grow(x[i]);
+    return b;
+  }), false, threads);
+  vertices_at_points_ = true;
 }
 
 }  // namespace vdc

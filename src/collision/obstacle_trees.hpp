@@ -18,8 +18,8 @@ class ObstacleTrees {
   // Refits to the vertices' paths from `start` to `end` (same sizes), each box padded by `pad`.
   void sweep(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<std::array<int32_t, 2>>& edges,
              const std::vector<Vec3>& start, const std::vector<Vec3>& end, double pad, int threads);
-  // Hierarchies whose boxes hold the vertices at `x`: as they are when the last sweep ended at
-  // x, else refit to x.
+  // Hierarchies whose boxes hold the vertices at `x`: the face and edge hierarchies as they are
+  // when the last sweep ended at x, else refit to x; the vertex hierarchy over the points x.
   void hold(const std::vector<std::array<int32_t, 3>>& faces, const std::vector<std::array<int32_t, 2>>& edges,
             const std::vector<Vec3>& x, int threads);
 
@@ -33,6 +33,7 @@ class ObstacleTrees {
   const Bvh* faces_ = nullptr;
   const Bvh* edges_ = nullptr;
   std::vector<Vec3> held_;  // where the last refit's sweep ended
+  bool vertices_at_points_ = false;  // the vertex hierarchy's boxes are the points held_
 };
 
 }  // namespace vdc

@@ -129,7 +129,7 @@ class ProximitySearch {
   }
 
   // Obstacle vertices: the nearest cloth face. The obstacles' vertex hierarchies hold their
-  // vertices at their positions, unpadded: grown by the band, each box is the vertex's point box.
+  // vertices' points (ObstacleTrees::hold): grown by the band, each box is the vertex's point box.
   void obstacle_vertices(const CandidateTrees& trees, int threads) {
     obstacle_vertex_candidates(trees, nullptr, s_.band, threads, [&](std::size_t o, int32_t i, int32_t f) { obstacle_vertex_face(o, i, f); });
   }

@@ -240,17 +240,38 @@ class RefitBvh {
   const Bvh& update(std::vector<Aabb> leaf_boxes, int threads = 1) {
     if (tree_ && tree_->size() == static_cast<int32_t>(leaf_boxes.size())) {
       tree_->refit(std::move(leaf_boxes), threads);
+      rebuilt_ = false;
       if (tree_->looseness() <= max_loosening_ * built_looseness_) return *tree_;
       leaf_boxes = tree_->leaf_boxes();
     }
+    return rebuild(std::move(leaf_boxes), threads);
+  }
+  // As update, but rebuilt only when `rebuild_now` (or the number of primitives changed), never
+  // by its own looseness: for boxes of next to no area (a vertex's path over a step, or its
+  // point), whose looseness measures their speed rather than the tree. A vertex hierarchy is
+  // rebuilt when the face hierarchy over the same vertices is.
+  const Bvh& update_with(std::vector<Aabb> leaf_boxes, bool rebuild_now, int threads = 1) {
+    if (!rebuild_now && tree_ && tree_->size() == static_cast<int32_t>(leaf_boxes.size())) {
+      tree_->refit(std::move(leaf_boxes), threads);
+      rebuilt_ = false;
+      return *tree_;
+    }
+    return rebuild(std::move(leaf_boxes), threads);
+  }
+  // Whether the last update built the tree afresh.
+  bool rebuilt() const { return rebuilt_; }
+
+ private:
+  const Bvh& rebuild(std::vector<Aabb> leaf_boxes, int threads) {
     tree_ = std::make_unique<Bvh>(leaf_boxes, threads);
     built_looseness_ = tree_->looseness();
+    rebuilt_ = true;
     return *tree_;
   }
 
- private:
   double max_loosening_;
   double built_looseness_ = 0;
+  bool rebuilt_ = false;
   std::unique_ptr<Bvh> tree_;
 };
 

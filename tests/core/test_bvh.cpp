@@ -219,5 +219,52 @@ TEST(Bvh, KeptHierarchyIsRebuiltWhenRefitsLoosenIt) {
   }
 }
 
+// A hierarchy over points (an obstacle's vertices) follows another's rebuilds, never its own
+// looseness: update_with refits it in place, whatever the points did, unless told to rebuild,
+// and its queries stay exact either way; `rebuilt` says which happened, for update too.
+TEST(Bvh, KeptHierarchyOfPointsIsRebuiltOnlyWhenTold) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  std::vector<Aabb> points(200);
+  auto scatter = [&] {
+    for (auto& p : points) {
+      p = Aabb();
+      p.grow(Vec3(U(rng), U(rng), U(rng)));
+    }
+  };
+  auto exact = [&](const Bvh& tree) {
+    Aabb probe;
+    probe.grow(Vec3(-0.5, -0.4, -0.5));
+    probe.grow(Vec3(0.5, 0.6, 0.5));
+    std::set<int> found, brute;
+    tree.query(probe, [&](int32_t i) { found.insert(i); });
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (probe.overlaps(points[i])) brute.insert(static_cast<int>(i));
+    EXPECT_GT(brute.size(), 10u);
+    EXPECT_EQ(found, brute);
+  };
+  scatter();
+  RefitBvh kept;
+  const Bvh* first = &kept.update_with(points, false);
+  EXPECT_TRUE(kept.rebuilt());  // nothing to refit yet
+  scatter();
+  const Bvh& refit = kept.update_with(points, false);
+  EXPECT_FALSE(kept.rebuilt());
+  EXPECT_EQ(&refit, first);
+  exact(refit);
+  kept.update_with(points, true);
+  EXPECT_TRUE(kept.rebuilt());
+  exact(kept.update_with(points, false));
+  std::vector<Aabb> fewer(points.begin(), points.begin() + 100);
+  kept.update_with(fewer, false);
+  EXPECT_TRUE(kept.rebuilt());  // another number of primitives
+  RefitBvh boxes;
+  std::vector<Aabb> drifting = random_boxes(rng, 100, 1.0);
+  boxes.update(drifting);
+  EXPECT_TRUE(boxes.rebuilt());
+  boxes.update(drifting);
+  EXPECT_FALSE(boxes.rebuilt());
+}
+
 }  // namespace
 }  // namespace vdc
