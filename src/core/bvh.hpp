@@ -238,13 +238,9 @@ class RefitBvh {
  public:
   explicit RefitBvh(double max_loosening = 1.2) : max_loosening_(max_loosening) {}
   const Bvh& update(std::vector<Aabb> leaf_boxes, int threads = 1) {
-    if (tree_ && tree_->size() == static_cast<int32_t>(leaf_boxes.size())) {
-      tree_->refit(std::move(leaf_boxes), threads);
-      rebuilt_ = false;
-      if (tree_->looseness() <= max_loosening_ * built_looseness_) return *tree_;
-      leaf_boxes = tree_->leaf_boxes();
-    }
-    return rebuild(std::move(leaf_boxes), threads);
+    const Bvh& tree = update_with(std::move(leaf_boxes), false, threads);
+    if (rebuilt_ || tree.looseness() <= max_loosening_ * built_looseness_) return tree;
+    return rebuild(tree.leaf_boxes(), threads);
   }
   // As update, but rebuilt only when `rebuild_now` (or the number of primitives changed), never
   // by its own looseness: for boxes of next to no area (a vertex's path over a step, or its
