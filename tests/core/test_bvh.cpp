@@ -31,6 +31,19 @@ std::set<std::pair<int, int>> brute_self(const std::vector<Aabb>& boxes) {
   return out;
 }
 
+// The boxes a query with `probe` must report, and those `tree` reports.
+std::set<int> brute_query(const std::vector<Aabb>& boxes, const Aabb& probe) {
+  std::set<int> out;
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    if (boxes[i].overlaps(probe)) out.insert(static_cast<int>(i));
+  return out;
+}
+std::set<int> queried(const Bvh& tree, const Aabb& probe) {
+  std::set<int> out;
+  tree.query(probe, [&](int32_t i) { out.insert(i); });
+  return out;
+}
+
 TEST(Bvh, SelfPairsMatchBruteForceBeforeAndAfterRefit) {
   std::mt19937 rng(5);
   auto boxes = random_boxes(rng, 400, 1.0);
@@ -143,11 +156,7 @@ TEST(Bvh, PairsBetweenTreesAndBoxQueriesMatchBruteForce) {
   Aabb q;
   q.grow(Vec3(-0.3, -0.3, -0.3));
   q.grow(Vec3(0.3, 0.3, 0.3));
-  std::set<int> hits, brute;
-  ta.query(q, [&](int32_t i) { hits.insert(i); });
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i].overlaps(q)) brute.insert(static_cast<int>(i));
-  EXPECT_EQ(hits, brute);
+  EXPECT_EQ(queried(ta, q), brute_query(a, q));
 }
 
 // A tree large enough to be built and refit in two halves side by side is the one-thread tree:
@@ -236,12 +245,9 @@ TEST(Bvh, KeptHierarchyOfPointsIsRebuiltOnlyWhenTold) {
     Aabb probe;
     probe.grow(Vec3(-0.5, -0.4, -0.5));
     probe.grow(Vec3(0.5, 0.6, 0.5));
-    std::set<int> found, brute;
-    tree.query(probe, [&](int32_t i) { found.insert(i); });
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (probe.overlaps(points[i])) brute.insert(static_cast<int>(i));
+    const std::set<int> brute = brute_query(points, probe);
     EXPECT_GT(brute.size(), 10u);
-    EXPECT_EQ(found, brute);
+    EXPECT_EQ(queried(tree, probe), brute);
   };
   scatter();
   RefitBvh kept;
