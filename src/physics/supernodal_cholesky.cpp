@@ -57,6 +57,15 @@ bool SupernodalCholesky::prepare(const SparseMatrix& a, cholmod_factor& factor, 
                                                            static_cast<std::size_t>(at - first)});
     }
   }
+  // By target, so that each supernode's entries are one run, loaded with it (load_supernode).
+  std::sort(entries_.begin(), entries_.end(), [](const Entry& x, const Entry& y) { return x.target < y.target; });
+  entry_start_.assign(nsuper + 1, 0);
+  for (std::size_t s = 0, e = 0; s < nsuper; ++s) {
+    while (e < entries_.size() && entries_[e].target < static_cast<std::size_t>(px[s + 1])) ++e;
+    entry_start_[s + 1] = e;
+  }
+  // What no supernode holds (if anything) stays zero, as cholmod_factorize leaves it.
+  std::fill(static_cast<double*>(factor.x), static_cast<double*>(factor.x) + factor.xsize, 0.0);
   map_.assign(n, -1);
   relative_map_.assign(n, 0);
   head_.assign(nsuper, -1);
@@ -75,12 +84,18 @@ bool SupernodalCholesky::factorize(const SparseMatrix& a, cholmod_factor& factor
   const int* ls = static_cast<const int*>(factor.s);
   double* lx = static_cast<double*>(factor.x);
   const double* values = a.valuePtr();
-  std::fill(lx, lx + factor.xsize, 0.0);
-  for (const Entry& e : entries_) lx[e.target] = values[e.source];
+  // Supernode s's columns: zero but for a's entries, loaded just before s is factored (no
+  // descendant writes them earlier), while they stay in cache for its updates.
+  auto load_supernode = [&](int s) {
+    const auto su = static_cast<std::size_t>(s);
+    std::fill(lx + px[s], lx + px[s + 1], 0.0);
+    for (std::size_t e = entry_start_[su]; e < entry_start_[su + 1]; ++e) lx[entries_[e].target] = values[entries_[e].source];
+  };
   const double one = 1.0, zero = 0.0;
   const auto nsuper = static_cast<int>(factor.nsuper);
   std::fill(head_.begin(), head_.end(), -1);
   for (int s = 0; s < nsuper; ++s) {
+    load_supernode(s);
     const int k1 = super[s], k2 = super[s + 1], nscol = k2 - k1;
     const int psi = pi[s], nsrow = pi[s + 1] - psi, psx = px[s];
     for (int k = 0; k < nsrow; ++k) map_[static_cast<std::size_t>(ls[psi + k])] = k;
@@ -117,6 +132,7 @@ bool SupernodalCholesky::factorize(const SparseMatrix& a, cholmod_factor& factor
     int info = 0;
     dpotrf_("L", &nscol, lx + psx, &nsrow, &info);
     if (info != 0) {
+      for (int later = s + 1; later < nsuper; ++later) load_supernode(later);  // as cholmod_factorize leaves them
       factor.minor = static_cast<std::size_t>(k1 + info - 1);
       return false;
     }

@@ -35,7 +35,8 @@ class SupernodalCholesky {
     std::size_t target;  // index in the factor's values
   };
   const cholmod_factor* prepared_ = nullptr;
-  std::vector<Entry> entries_;
+  std::vector<Entry> entries_;           // by target
+  std::vector<std::size_t> entry_start_;  // per supernode: its first entry
   std::vector<int> supernode_of_;  // per column of L
   // The left-looking loop's state: map_[row] is the row's place in the current supernode;
   // head_[s] lists (through next_) the supernodes still to update s, each from its row lpos_[d].
