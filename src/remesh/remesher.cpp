@@ -10,23 +10,52 @@ namespace vdc {
 
 namespace {
 
-const Attribute<VertTag, Mat2>& sizing(const Mesh& mesh) { return mesh.vert_attrs().get<Mat2>(kSizingAttr); }
+// The sizing tensors, looked up by name once a pass and handed down (a lookup costs more than
+// an edge's metric).
+using Sizing = Attribute<VertTag, Mat2>;
+const Sizing& sizing(const Mesh& mesh) { return mesh.vert_attrs().get<Mat2>(kSizingAttr); }
 
-double size2(const Mesh& mesh, VertId a, VertId b) {
-  const auto& m = sizing(mesh);
+double size2(const Mesh& mesh, const Sizing& m, VertId a, VertId b) {
   Vec2 d = mesh.u(a) - mesh.u(b);
   return d.dot(0.5 * (m[a] + m[b]) * d);
 }
 
+double edge_size2(const Mesh& mesh, const Sizing& m, EdgeId e) {
+  double s2 = 0;
+  for (int side = 0; side < 2; ++side)
+    if (mesh.edge_face(e, side).valid()) s2 = std::max(s2, size2(mesh, m, mesh.edge_vert(e, side, 0), mesh.edge_vert(e, side, 1)));
+  return s2;
+}
+
+bool should_flip(const Mesh& mesh, const Sizing& m, EdgeId e, double threshold) {
+  if (mesh.is_boundary(e) || mesh.is_seam(e)) return false;
+  const VertId vi = mesh.edge_vert(e, 0, 0), vj = mesh.edge_vert(e, 0, 1);
+  const VertId vk = mesh.opposite_vert(e, 0), vl = mesh.opposite_vert(e, 1);
+  const Mat2 M = 0.25 * (m[vi] + m[vj] + m[vk] + m[vl]);
+  const Vec2 ujk = mesh.u(vj) - mesh.u(vk), uik = mesh.u(vi) - mesh.u(vk);
+  const Vec2 uil = mesh.u(vi) - mesh.u(vl), ujl = mesh.u(vj) - mesh.u(vl);
+  // The angles opposite e, at k and l, measured in the metric, sum to more than pi exactly when
+  // sin(k + l) = sin k cos l + cos k sin l < 0. Sines are proportional to the (positive) areas,
+  // cosines to M-dot products; the common factors cancel in the sign.
+  const double sk = std::abs(cross2(ujk, uik)), sl = std::abs(cross2(uil, ujl));
+  const double a = sk * uil.dot(M * ujl) + ujk.dot(M * uik) * sl;
+  return a < -threshold * (sk + sl);
+}
+
+bool flip_keeps_valid(const Mesh& mesh, const Sizing& m, EdgeId e) {
+  return size2(mesh, m, mesh.opposite_vert(e, 0), mesh.opposite_vert(e, 1)) <= 1.0;
+}
+
 // Flips every edge that fails the Delaunay test, sweeping until none does (or the pass bound).
 int flip_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
+  const Sizing& m = sizing(mesh);
   int flips = 0;
   for (int pass = 0; pass < o.max_passes; ++pass) {
     int this_pass = 0;
     std::vector<EdgeId> edges;
     for (EdgeId e : mesh.edges()) edges.push_back(e);
     for (EdgeId e : edges)
-      if (mesh.alive(e) && should_flip(mesh, e, o.flip_threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, e) &&
+      if (mesh.alive(e) && should_flip(mesh, m, e, o.flip_threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, m, e) &&
           !(guard && guard->adds_crossings(preview_flip(mesh, e)))) {
         const OpRecord done = flip_edge(mesh, e);
         if (guard) guard->add(done);
@@ -44,11 +73,11 @@ int split_all(Mesh& mesh, const RemeshOptions& o) {
   for (int pass = 0; pass < o.max_passes; ++pass) {
     std::vector<std::pair<double, EdgeId>> invalid;
     for (EdgeId e : mesh.edges())
-      if (double s2 = edge_size2(mesh, e); s2 > 1.0) invalid.emplace_back(s2, e);
+      if (double s2 = edge_size2(mesh, m, e); s2 > 1.0) invalid.emplace_back(s2, e);
     if (invalid.empty()) break;
     std::stable_sort(invalid.begin(), invalid.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     for (const auto& [s2, e] : invalid) {
-      if (!mesh.alive(e) || edge_size2(mesh, e) <= 1.0) continue;
+      if (!mesh.alive(e) || edge_size2(mesh, m, e) <= 1.0) continue;
       // The sizing of a new vert is the mean of the tensors at the ends of its side.
       OpRecord r = split_edge(mesh, e, 0.5);
       for (VertId v : r.added_verts) {
@@ -69,7 +98,7 @@ int split_all(Mesh& mesh, const RemeshOptions& o) {
 }
 
 // Largest s^2 among the edges that collapsing e (removing end `remove`) would create.
-double collapse_worst(const Mesh& mesh, EdgeId e, int remove) {
+double collapse_worst(const Mesh& mesh, const Sizing& m, EdgeId e, int remove) {
   const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
   double worst = 0;
   for (VertId vr : mesh.node_verts(r)) {
@@ -77,7 +106,7 @@ double collapse_worst(const Mesh& mesh, EdgeId e, int remove) {
     if (!vk.valid()) return std::numeric_limits<double>::infinity();
     for (FaceId f : mesh.vert_faces(vr))
       for (VertId w : mesh.face_verts(f))
-        if (mesh.vert_node(w) != r && mesh.vert_node(w) != k) worst = std::max(worst, size2(mesh, vk, w));
+        if (mesh.vert_node(w) != r && mesh.vert_node(w) != k) worst = std::max(worst, size2(mesh, m, vk, w));
   }
   return worst;
 }
@@ -85,6 +114,7 @@ double collapse_worst(const Mesh& mesh, EdgeId e, int remove) {
 // Collapses edges, shortest first, in passes; a pass after the first looks only at the edges
 // around nodes that the previous pass changed (elsewhere nothing can have become collapsible).
 int collapse_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
+  const Sizing& m = sizing(mesh);
   int collapses = 0;
   std::vector<EdgeId> pass_edges;
   for (EdgeId e : mesh.edges()) pass_edges.push_back(e);
@@ -92,14 +122,14 @@ int collapse_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
   for (int pass = 0; pass < o.max_passes && !pass_edges.empty(); ++pass) {
     std::vector<std::pair<double, EdgeId>> candidates;
     for (EdgeId e : pass_edges)
-      if (mesh.alive(e)) candidates.emplace_back(edge_size2(mesh, e), e);
+      if (mesh.alive(e)) candidates.emplace_back(edge_size2(mesh, m, e), e);
     std::stable_sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::fill(dirty.begin(), dirty.end(), 0);
     std::vector<NodeId> changed;
     for (const auto& [s2, e] : candidates) {
       if (!mesh.alive(e)) continue;
       for (int remove = 0; remove < 2; ++remove) {
-        if (collapse_worst(mesh, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove, o.border_sag)) continue;
+        if (collapse_worst(mesh, m, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove, o.border_sag)) continue;
         if (guard && guard->adds_crossings(preview_collapse(mesh, e, remove))) continue;
         const NodeId kept = mesh.edge_node(e, 1 - remove);
         const OpRecord done = collapse_edge(mesh, e, remove, o.border_sag);
@@ -135,32 +165,11 @@ int collapse_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
 
 }  // namespace
 
-double edge_size2(const Mesh& mesh, EdgeId e) {
-  double s2 = 0;
-  for (int side = 0; side < 2; ++side)
-    if (mesh.edge_face(e, side).valid()) s2 = std::max(s2, size2(mesh, mesh.edge_vert(e, side, 0), mesh.edge_vert(e, side, 1)));
-  return s2;
-}
+double edge_size2(const Mesh& mesh, EdgeId e) { return edge_size2(mesh, sizing(mesh), e); }
 
-bool should_flip(const Mesh& mesh, EdgeId e, double threshold) {
-  if (mesh.is_boundary(e) || mesh.is_seam(e)) return false;
-  const VertId vi = mesh.edge_vert(e, 0, 0), vj = mesh.edge_vert(e, 0, 1);
-  const VertId vk = mesh.opposite_vert(e, 0), vl = mesh.opposite_vert(e, 1);
-  const auto& m = sizing(mesh);
-  const Mat2 M = 0.25 * (m[vi] + m[vj] + m[vk] + m[vl]);
-  const Vec2 ujk = mesh.u(vj) - mesh.u(vk), uik = mesh.u(vi) - mesh.u(vk);
-  const Vec2 uil = mesh.u(vi) - mesh.u(vl), ujl = mesh.u(vj) - mesh.u(vl);
-  // The angles opposite e, at k and l, measured in the metric, sum to more than pi exactly when
-  // sin(k + l) = sin k cos l + cos k sin l < 0. Sines are proportional to the (positive) areas,
-  // cosines to M-dot products; the common factors cancel in the sign.
-  const double sk = std::abs(cross2(ujk, uik)), sl = std::abs(cross2(uil, ujl));
-  const double a = sk * uil.dot(M * ujl) + ujk.dot(M * uik) * sl;
-  return a < -threshold * (sk + sl);
-}
+bool should_flip(const Mesh& mesh, EdgeId e, double threshold) { return should_flip(mesh, sizing(mesh), e, threshold); }
 
-bool flip_keeps_valid(const Mesh& mesh, EdgeId e) {
-  return size2(mesh, mesh.opposite_vert(e, 0), mesh.opposite_vert(e, 1)) <= 1.0;
-}
+bool flip_keeps_valid(const Mesh& mesh, EdgeId e) { return flip_keeps_valid(mesh, sizing(mesh), e); }
 
 RemeshStats remesh(Mesh& mesh, const RemeshOptions& options, const StandingSurfaces* standing, int self) {
   RemeshStats s;
