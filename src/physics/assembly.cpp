@@ -176,6 +176,9 @@ int64_t SystemAssembler::value_index(int32_t i, int32_t j, int r, int c) const {
   return a_.outerIndexPtr()[3 * j + c] + 3 * k + r;
 }
 
+// How many contributions ahead the gather fetches element blocks.
+constexpr int32_t kGatherAhead = 12;
+
 void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& v, const StepParams& p) {
   const double h = p.h, h2 = p.h * p.h;
   const auto nf = static_cast<int64_t>(model_.face_nodes.size());
@@ -230,6 +233,18 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
       store_blocks<4>(local, matrix_buffer_.get() + nf * kFaceMat + e * kBendMat);
       std::copy(rhs.data(), rhs.data() + kBendVec, rhs_buffer_.get() + nf * kFaceVec + e * kBendVec);
     }
+    // The gather: each slot's blocks (each node's force parts) lie scattered over the element
+    // buffers, so those a few contributions ahead are fetched while these are summed (the same
+    // sums in the same order).
+    const auto num_contributions = static_cast<int32_t>(contributions_.size());
+    const auto num_force_parts = static_cast<int32_t>(force_parts_.size());
+    auto fetch_ahead = [&](int32_t q) {
+      if (q + kGatherAhead < num_contributions) {
+        const double* block = matrix_buffer_.get() + contributions_[static_cast<std::size_t>(q + kGatherAhead)];
+        __builtin_prefetch(block);
+        __builtin_prefetch(block + 8);
+      }
+    };
 #pragma omp for schedule(static)
     for (int32_t j = 0; j < model_.num_nodes; ++j) {
       const std::span<const int32_t> nb = neighbours(j);
@@ -237,6 +252,7 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
         const int32_t s = slot_start_[static_cast<std::size_t>(j)] + static_cast<int32_t>(k);
         Mat3 block = Mat3::Zero();
         for (int32_t q = slot_contrib_start_[static_cast<std::size_t>(s)]; q < slot_contrib_start_[static_cast<std::size_t>(s) + 1]; ++q) {
+          fetch_ahead(q);
           block += Eigen::Map<const Mat3>(matrix_buffer_.get() + contributions_[static_cast<std::size_t>(q)]);
         }
         if (nb[k] == j) block.diagonal().array() += model_.node_mass[static_cast<std::size_t>(j)] * (1.0 + h * p.damping);
@@ -245,8 +261,10 @@ void SystemAssembler::assemble(const Eigen::VectorXd& x, const Eigen::VectorXd& 
       }
       const double mass = model_.node_mass[static_cast<std::size_t>(j)];
       Vec3 rhs = h * mass * (p.gravity - p.damping * v.segment<3>(3 * j));
-      for (int32_t q = node_force_start_[static_cast<std::size_t>(j)]; q < node_force_start_[static_cast<std::size_t>(j) + 1]; ++q)
+      for (int32_t q = node_force_start_[static_cast<std::size_t>(j)]; q < node_force_start_[static_cast<std::size_t>(j) + 1]; ++q) {
+        if (q + kGatherAhead < num_force_parts) __builtin_prefetch(rhs_buffer_.get() + force_parts_[static_cast<std::size_t>(q + kGatherAhead)]);
         rhs += Eigen::Map<const Vec3>(rhs_buffer_.get() + force_parts_[static_cast<std::size_t>(q)]);
+      }
       b_.segment<3>(3 * j) = rhs;
     }
   }
