@@ -58,7 +58,9 @@ bool SupernodalCholesky::prepare(const SparseMatrix& a, cholmod_factor& factor, 
     }
   }
   // By target, so that each supernode's entries are one run, loaded with it (load_supernode).
-  std::sort(entries_.begin(), entries_.end(), [](const Entry& x, const Entry& y) { return x.target < y.target; });
+  // (Already so without a fill-reducing permutation: a's columns in order.)
+  auto by_target = [](const Entry& x, const Entry& y) { return x.target < y.target; };
+  if (!std::is_sorted(entries_.begin(), entries_.end(), by_target)) std::sort(entries_.begin(), entries_.end(), by_target);
   entry_start_.assign(nsuper + 1, 0);
   for (std::size_t s = 0, e = 0; s < nsuper; ++s) {
     while (e < entries_.size() && entries_[e].target < static_cast<std::size_t>(px[s + 1])) ++e;
