@@ -25,6 +25,15 @@ std::vector<char> KeptClothPairs::beyond(const Eigen::VectorXd& a, const Eigen::
   return far;
 }
 
+bool KeptClothPairs::worth_taking(const std::vector<char>& far, const std::vector<char>& used) {
+  std::size_t beyond = 0, in_use = 0;
+  for (std::size_t n = 0; n < used.size(); ++n) {
+    in_use += used[n] != 0;
+    beyond += used[n] != 0 && far[n] != 0;
+  }
+  return 16 * beyond <= in_use;
+}
+
 std::vector<Aabb> MovedPrimitives::boxes_of(const std::vector<int32_t>& items, const std::vector<Aabb>& boxes) {
   std::vector<Aabb> out;
   out.reserve(items.size());

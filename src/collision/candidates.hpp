@@ -77,6 +77,10 @@ struct KeptClothPairs {
   // end; both the same for a search at one time), once the mean displacement of the nodes in
   // `used` is taken out: moving every box alike changes no pair that meets.
   std::vector<char> beyond(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double d, const std::vector<char>& used) const;
+  // Whether the lists are worth taking with `far` (beyond's answer) gone beyond their reach: at
+  // most one node in sixteen of those in `used`. Past that, the far nodes' own queries and the
+  // hierarchies over their primitives cost more than a search that meets everything.
+  static bool worth_taking(const std::vector<char>& far, const std::vector<char>& used);
 };
 
 // The cloth primitives with a node that the last round of impact projection moved (Bridson et

@@ -304,14 +304,12 @@ CollisionStats Collider::resolve(const Eigen::VectorXd& x_start, Eigen::VectorXd
                                cloth_edge_tree_.update(edge_boxes, params.threads), obstacle_vertex_bvh, obstacle_face_bvh, obstacle_edge_bvh};
     // After the first round only pairs with a node that a projection moved can hold a new impact.
     // In the first, the lists of the last proximity search made hold the cloth pairs of the
-    // nodes that stay near where it was made.
+    // nodes that stay near where it was made, taken while most nodes do.
     std::optional<MovedPrimitives> moved_primitives;
-    const bool listed = round == 0 && kept_pairs_.x.size() == x_start.size();
     std::vector<char> far;  // in a listed first round: the nodes that go beyond the lists' reach
-    if (listed) {
-      far = kept_pairs_.beyond(x_start, x_end, 2 * scene.eta, cloth_node_used);
-      moved_primitives.emplace(far, trees, face_boxes, edge_boxes);
-    }
+    if (round == 0 && kept_pairs_.x.size() == x_start.size()) far = kept_pairs_.beyond(x_start, x_end, 2 * scene.eta, cloth_node_used);
+    const bool listed = !far.empty() && KeptClothPairs::worth_taking(far, cloth_node_used);
+    if (listed) moved_primitives.emplace(far, trees, face_boxes, edge_boxes);
     if (round > 0) moved_primitives.emplace(moved, trees, face_boxes, edge_boxes);
     ImpactRound detection(scene, budget);
     detection.detect(trees, moved_primitives ? &*moved_primitives : nullptr, listed ? &kept_pairs_ : nullptr, params.threads);

@@ -374,12 +374,7 @@ std::vector<ProximityPair> Collider::proximities(const Eigen::VectorXd& x, const
   std::optional<MovedPrimitives> far_primitives;
   if (kept_pairs_.x.size() == x.size() && kept_pairs_.pad == 2 * band) {
     far = kept_pairs_.beyond(x, x, band, used);
-    std::size_t beyond = 0, in_use = 0;
-    for (std::size_t n = 0; n < used.size(); ++n) {
-      in_use += used[n] != 0;
-      beyond += used[n] != 0 && far[n] != 0;
-    }
-    if (16 * beyond <= in_use) far_primitives.emplace(far, trees, face_boxes, edge_boxes);
+    if (KeptClothPairs::worth_taking(far, used)) far_primitives.emplace(far, trees, face_boxes, edge_boxes);
   }
   if (!far_primitives) {
     kept_pairs_.clear(static_cast<std::size_t>(num_nodes_), cloth_edges_.size());
