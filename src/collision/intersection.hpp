@@ -11,6 +11,9 @@ namespace vdc {
 
 // True when segment [p, q] crosses the interior or boundary of triangle (a, b, c) transversally.
 bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
+// True when t lies wholly on one side of s's plane, by far more than the crossing tests'
+// tolerance (Moller 1997's first rejection): then no edge of either crosses the other.
+bool plane_separates(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
 // True when the triangles intersect (a transversal crossing of an edge of either through the other).
 bool triangles_intersect(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
 // Number of intersecting pairs of triangles that share no node.

@@ -10,9 +10,8 @@ namespace vdc {
 
 namespace {
 
-// Faces made since the last build of the garment's tree are searched one by one, up to this
-// many or an eighth of the tree's, whichever is more.
-constexpr std::size_t kRecentBound = 256;
+// Faces made that are searched one by one before they go into a tree.
+constexpr std::size_t kTail = 32;
 
 Aabb box_of(const Triangle& t) {
   Aabb b;
@@ -42,31 +41,47 @@ StandingSurfaces::StandingSurfaces(std::vector<Triangle> t, std::vector<int> o, 
 
 CrossingGuard::CrossingGuard(const Mesh& mesh, const StandingSurfaces& standing, int self)
     : mesh_(mesh), standing_(standing), self_(self) {
-  reindex();
-}
-
-Triangle CrossingGuard::triangle(FaceId f) const {
-  return {mesh_.x(mesh_.face_node(f, 0)), mesh_.x(mesh_.face_node(f, 1)), mesh_.x(mesh_.face_node(f, 2))};
-}
-
-void CrossingGuard::reindex() {
-  indexed_.clear();
   std::vector<Triangle> triangles;
   for (FaceId f : mesh_.faces()) {
     indexed_.push_back(f);
     triangles.push_back(triangle(f));
   }
   own_tree_ = std::make_unique<Bvh>(boxes_of(triangles));
-  recent_.clear();
-  recent_boxes_.clear();
+}
+
+Triangle CrossingGuard::triangle(FaceId f) const {
+  return {mesh_.x(mesh_.face_node(f, 0)), mesh_.x(mesh_.face_node(f, 1)), mesh_.x(mesh_.face_node(f, 2))};
 }
 
 void CrossingGuard::add(const OpRecord& done) {
   for (FaceId f : done.added_faces) {
-    recent_.push_back(f);
-    recent_boxes_.push_back(box_of(triangle(f)));
+    list_.faces.push_back(f);
+    list_.boxes.push_back(box_of(triangle(f)));
   }
-  if (recent_.size() > std::max(kRecentBound, indexed_.size() / 8)) reindex();
+  if (list_.faces.size() >= kTail) carry();
+}
+
+void CrossingGuard::carry() {
+  // Faces removed since they were made leave as their level is rebuilt (face ids are not reused
+  // before the mesh is compacted, so a dead face is never met again).
+  Made carried;
+  auto take_live = [&](const Made& from) {
+    for (std::size_t i = 0; i < from.faces.size(); ++i)
+      if (mesh_.alive(from.faces[i])) {
+        carried.faces.push_back(from.faces[i]);
+        carried.boxes.push_back(from.boxes[i]);
+      }
+  };
+  take_live(list_);
+  list_ = Made{};
+  std::size_t k = 0;
+  for (; k < levels_.size() && levels_[k].tree; ++k) {
+    take_live(levels_[k]);
+    levels_[k] = Made{};
+  }
+  if (k == levels_.size()) levels_.emplace_back();
+  carried.tree = std::make_unique<Bvh>(carried.boxes);
+  levels_[k] = std::move(carried);
 }
 
 int CrossingGuard::crossings_of(const Triangle& t, const std::array<NodeId, 3>& nodes, const std::vector<FaceId>& skip) {
@@ -77,8 +92,10 @@ int CrossingGuard::crossings_of(const Triangle& t, const std::array<NodeId, 3>& 
     if (triangles_intersect(t, triangle(f))) ++count;
   };
   own_tree_->query(box, [&](int32_t i) { test_own(indexed_[static_cast<std::size_t>(i)]); });
-  for (std::size_t i = 0; i < recent_.size(); ++i)
-    if (recent_boxes_[i].overlaps(box)) test_own(recent_[i]);
+  for (const Made& level : levels_)
+    if (level.tree) level.tree->query(box, [&](int32_t i) { test_own(level.faces[static_cast<std::size_t>(i)]); });
+  for (std::size_t i = 0; i < list_.faces.size(); ++i)
+    if (list_.boxes[i].overlaps(box)) test_own(list_.faces[i]);
   standing_.tree.query(box, [&](int32_t i) {
     const auto k = static_cast<std::size_t>(i);
     if (standing_.owners[k] != self_ && triangles_intersect(t, standing_.triangles[k])) ++count;

@@ -40,18 +40,28 @@ class CrossingGuard {
   int refused() const { return refused_; }
 
  private:
+  // Faces made while remeshing, kept in the logarithmic method of Bentley and Saxe (1980): a
+  // short list searched one by one, and trees over 2^k of those lists each, merged as a binary
+  // counter carries, so a face is put into a tree about log(made / kTail) times and a search
+  // meets one tree a level.
+  struct Made {
+    std::vector<FaceId> faces;
+    std::vector<Aabb> boxes;
+    std::unique_ptr<Bvh> tree;  // over `boxes`; none for the list
+  };
+
   // Intersecting pairs of triangle t (nodes `nodes`) with the guarded faces other than `skip`.
   int crossings_of(const Triangle& t, const std::array<NodeId, 3>& nodes, const std::vector<FaceId>& skip);
   Triangle triangle(FaceId f) const;
-  void reindex();  // builds the tree over the garment's live faces
+  void carry();  // the full list into the levels' trees
 
   const Mesh& mesh_;
   const StandingSurfaces& standing_;
   int self_;
-  std::vector<FaceId> indexed_;   // the garment's faces in own_tree_, in its leaf order
+  std::vector<FaceId> indexed_;   // the garment's faces at the start, in own_tree_'s primitive order
   std::unique_ptr<Bvh> own_tree_;
-  std::vector<FaceId> recent_;    // faces made since the tree was built, searched one by one
-  std::vector<Aabb> recent_boxes_;
+  Made list_;                     // the latest faces made, at most kTail
+  std::vector<Made> levels_;      // level k: about kTail 2^k faces made (fewer once dead ones drop out), or empty
   int refused_ = 0;
 };
 
