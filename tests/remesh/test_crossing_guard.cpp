@@ -145,6 +145,39 @@ TEST(CrossingGuard, SeesTheFacesOperationsMade) {
   EXPECT_EQ(guard.refused(), 2);
 }
 
+TEST(CrossingGuard, SeesFacesMadeLongBefore) {
+  // As above, but the piece under the ridge split into about sixty faces, then a far piece
+  // split as often: the faces that cross have long left the short list for the guard's trees,
+  // where the faces the later splits removed are dropped.
+  MeshSource s;
+  const Triangle t = under_the_ridge();
+  const Vec3 far(5, 5, 5);
+  s.positions = {{0, 0, 0}, {1, 0, kFold}, {1, 1, 0}, {0, 1, kFold}, t[0], t[1], t[2], far, far + Vec3(0.2, 0, 0), far + Vec3(0, 0.2, 0)};
+  s.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 0}, {2.2, 0}, {2, 0.2}, {3, 0}, {3.2, 0}, {3, 0.2}};
+  s.faces = {{{{0, 0}, {1, 1}, {2, 2}}}, {{{0, 0}, {2, 2}, {3, 3}}}, {{{4, 4}, {5, 5}, {6, 6}}}, {{{7, 7}, {8, 8}, {9, 9}}}};
+  Mesh mesh = build_mesh(s);
+  const EdgeId e = mesh.find_edge(NodeId(0), NodeId(2));
+  const StandingSurfaces nothing = obstacle({});
+  CrossingGuard guard(mesh, nothing, 0);
+  // Splits every edge of the piece that starts at u = `from` in material space, rounds times.
+  auto refine = [&](double from, int rounds) {
+    for (int round = 0; round < rounds; ++round) {
+      std::vector<EdgeId> edges;
+      for (EdgeId x : mesh.edges())
+        if (mesh.u(mesh.edge_vert(x, 0, 0)).x() >= from && mesh.u(mesh.edge_vert(x, 0, 0)).x() < from + 1) edges.push_back(x);
+      for (EdgeId x : edges)
+        if (mesh.alive(x)) guard.add(split_edge(mesh, x));
+    }
+  };
+  refine(2, 4);
+  const int piece_faces = mesh.num_faces() - 3;
+  refine(3, 4);
+  EXPECT_GT(piece_faces, 40);
+  EXPECT_GT(mesh.num_faces() - 2 - piece_faces, 40);  // more than the short list holds: it was emptied after the piece
+  EXPECT_TRUE(guard.adds_crossings(preview_flip(mesh, e)));
+  EXPECT_TRUE(mesh.validate().ok());
+}
+
 TEST(CrossingGuard, LooksAtTheGarmentsOwnStandingFacesAsTheyChange) {
   // The standing surfaces hold the garment's own faces too (owner 0); the guard of garment 0
   // looks at its live faces instead, and the valley's flip crosses nothing of them. The layer
