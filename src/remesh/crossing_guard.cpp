@@ -41,12 +41,21 @@ StandingSurfaces::StandingSurfaces(std::vector<Triangle> t, std::vector<int> o, 
 
 CrossingGuard::CrossingGuard(const Mesh& mesh, const StandingSurfaces& standing, int self)
     : mesh_(mesh), standing_(standing), self_(self) {
+  reindex();
+}
+
+void CrossingGuard::reindex() {
+  indexed_.clear();
   std::vector<Triangle> triangles;
   for (FaceId f : mesh_.faces()) {
     indexed_.push_back(f);
     triangles.push_back(triangle(f));
   }
   own_tree_ = std::make_unique<Bvh>(boxes_of(triangles));
+  indexed_below_ = mesh_.face_capacity();
+  indexed_dead_ = 0;
+  list_ = Made{};
+  levels_.clear();
 }
 
 Triangle CrossingGuard::triangle(FaceId f) const {
@@ -54,6 +63,14 @@ Triangle CrossingGuard::triangle(FaceId f) const {
 }
 
 void CrossingGuard::add(const OpRecord& done) {
+  for (FaceId f : done.removed_faces)
+    if (f.idx < indexed_below_) ++indexed_dead_;
+  // Coarsening removes most of the faces the tree was built over: once half are gone, searching
+  // past them costs more than a new tree.
+  if (2 * indexed_dead_ > indexed_.size()) {
+    reindex();
+    return;
+  }
   for (FaceId f : done.added_faces) {
     list_.faces.push_back(f);
     list_.boxes.push_back(box_of(triangle(f)));

@@ -53,13 +53,16 @@ class CrossingGuard {
   // Intersecting pairs of triangle t (nodes `nodes`) with the guarded faces other than `skip`.
   int crossings_of(const Triangle& t, const std::array<NodeId, 3>& nodes, const std::vector<FaceId>& skip);
   Triangle triangle(FaceId f) const;
-  void carry();  // the full list into the levels' trees
+  void carry();    // the full list into the levels' trees
+  void reindex();  // one tree over every live face, the list and levels emptied
 
   const Mesh& mesh_;
   const StandingSurfaces& standing_;
   int self_;
-  std::vector<FaceId> indexed_;   // the garment's faces at the start, in own_tree_'s primitive order
+  std::vector<FaceId> indexed_;   // the garment's faces when own_tree_ was built, in its primitive order
   std::unique_ptr<Bvh> own_tree_;
+  int32_t indexed_below_ = 0;     // face ids below this were made before own_tree_
+  std::size_t indexed_dead_ = 0;  // faces of own_tree_ removed since
   Made list_;                     // the latest faces made, at most kTail
   std::vector<Made> levels_;      // level k: about kTail 2^k faces made (fewer once dead ones drop out), or empty
   int refused_ = 0;

@@ -6,8 +6,6 @@
 #include <limits>
 #include <memory>
 
-#include "core/task_order.hpp"
-
 namespace vdc {
 
 namespace {
@@ -48,69 +46,21 @@ bool flip_keeps_valid(const Mesh& mesh, const Sizing& m, EdgeId e) {
   return size2(mesh, m, mesh.opposite_vert(e, 0), mesh.opposite_vert(e, 1)) <= 1.0;
 }
 
-// The nodes whose faces an operation of the current sweep has replaced. A test of an edge made
-// before the sweep's first operation depends only on the faces around the edge's nodes (and the
-// positions, material coordinates and sizing of their verts, which flips and collapses leave as
-// they are), so it still holds for an edge none of whose nodes is marked.
-class ChangedNodes {
- public:
-  void start(const Mesh& mesh) { mark_.assign(static_cast<std::size_t>(mesh.node_capacity()), 0); }
-  void mark(NodeId n) { mark_[static_cast<std::size_t>(n.idx)] = 1; }
-  bool has(NodeId n) const { return n.valid() && mark_[static_cast<std::size_t>(n.idx)] != 0; }
-  // Every node of the faces around node n.
-  void mark_ring(const Mesh& mesh, NodeId n) {
-    for (VertId v : mesh.node_verts(n))
-      for (FaceId f : mesh.vert_faces(v))
-        for (int k = 0; k < 3; ++k) mark(mesh.face_node(f, k));
-  }
-  // Whether a node of edge e's faces has changed.
-  bool around(const Mesh& mesh, EdgeId e) const {
-    if (has(mesh.edge_node(e, 0)) || has(mesh.edge_node(e, 1))) return true;
-    for (int side = 0; side < 2; ++side)
-      if (mesh.edge_face(e, side).valid() && has(mesh.opposite_node(e, side))) return true;
-    return false;
-  }
-
- private:
-  std::vector<char> mark_;
-};
-
-bool flip_wanted(const Mesh& mesh, const Sizing& m, EdgeId e, double threshold) {
-  return should_flip(mesh, m, e, threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, m, e);
-}
-
 // Flips every edge that fails the Delaunay test, sweeping until none does (or the pass bound).
-// Each sweep tests every edge first (on o.threads threads), then flips in edge order, testing
-// again only edges whose faces an earlier flip of the sweep changed.
 int flip_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
   const Sizing& m = sizing(mesh);
   int flips = 0;
-  ChangedNodes changed;
   for (int pass = 0; pass < o.max_passes; ++pass) {
     int this_pass = 0;
     std::vector<EdgeId> edges;
     for (EdgeId e : mesh.edges()) edges.push_back(e);
-    // On one thread every edge is tested as its turn comes.
-    const bool tested = o.threads > 1;
-    std::vector<char> wanted(tested ? edges.size() : 0);
-    if (tested)
-      for_each_index(static_cast<int64_t>(edges.size()), o.threads,
-                     [&](int64_t i) { wanted[static_cast<std::size_t>(i)] = flip_wanted(mesh, m, edges[static_cast<std::size_t>(i)], o.flip_threshold); });
-    changed.start(mesh);
-    for (std::size_t i = 0; i < edges.size(); ++i) {
-      const EdgeId e = edges[i];
-      if (!mesh.alive(e)) continue;
-      if (!(!tested || changed.around(mesh, e) ? flip_wanted(mesh, m, e, o.flip_threshold) : wanted[i] != 0)) continue;
-      if (guard && guard->adds_crossings(preview_flip(mesh, e))) continue;
-      // The flip replaces the two faces of e, whose nodes are e's and the opposite ones.
-      changed.mark(mesh.edge_node(e, 0));
-      changed.mark(mesh.edge_node(e, 1));
-      changed.mark(mesh.opposite_node(e, 0));
-      changed.mark(mesh.opposite_node(e, 1));
-      const OpRecord done = flip_edge(mesh, e);
-      if (guard) guard->add(done);
-      ++this_pass;
-    }
+    for (EdgeId e : edges)
+      if (mesh.alive(e) && should_flip(mesh, m, e, o.flip_threshold) && can_flip(mesh, e) && flip_keeps_valid(mesh, m, e) &&
+          !(guard && guard->adds_crossings(preview_flip(mesh, e)))) {
+        const OpRecord done = flip_edge(mesh, e);
+        if (guard) guard->add(done);
+        ++this_pass;
+      }
     flips += this_pass;
     if (this_pass == 0) break;
   }
@@ -161,60 +111,37 @@ double collapse_worst(const Mesh& mesh, const Sizing& m, EdgeId e, int remove) {
   return worst;
 }
 
-// Whether collapsing e by removing end `remove` leaves every new edge short enough and the
-// mesh valid.
-bool collapse_allowed(const Mesh& mesh, const Sizing& m, EdgeId e, int remove, const RemeshOptions& o) {
-  return collapse_worst(mesh, m, e, remove) <= 1.0 - o.collapse_margin && can_collapse(mesh, e, remove, o.border_sag);
-}
-
 // Collapses edges, shortest first, in passes; a pass after the first looks only at the edges
 // around nodes that the previous pass changed (elsewhere nothing can have become collapsible).
-// Each pass tests its edges first (on o.threads threads), then collapses in order, testing again
-// only edges whose faces an earlier collapse of the pass changed.
 int collapse_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
   const Sizing& m = sizing(mesh);
   int collapses = 0;
   std::vector<EdgeId> pass_edges;
   for (EdgeId e : mesh.edges()) pass_edges.push_back(e);
   std::vector<char> dirty(static_cast<std::size_t>(mesh.node_capacity()), 0);
-  ChangedNodes changed;
   for (int pass = 0; pass < o.max_passes && !pass_edges.empty(); ++pass) {
     std::vector<std::pair<double, EdgeId>> candidates;
     for (EdgeId e : pass_edges)
       if (mesh.alive(e)) candidates.emplace_back(edge_size2(mesh, m, e), e);
     std::stable_sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    // allowed[2 i + remove]
-    const bool tested = o.threads > 1;
-    std::vector<char> allowed(tested ? 2 * candidates.size() : 0);
-    if (tested)
-      for_each_index(static_cast<int64_t>(candidates.size()), o.threads, [&](int64_t i) {
-        const auto c = static_cast<std::size_t>(i);
-        for (int remove = 0; remove < 2; ++remove)
-          allowed[2 * c + static_cast<std::size_t>(remove)] = collapse_allowed(mesh, m, candidates[c].second, remove, o);
-      });
-    changed.start(mesh);
     std::fill(dirty.begin(), dirty.end(), 0);
-    std::vector<NodeId> kept_nodes;
-    for (std::size_t c = 0; c < candidates.size(); ++c) {
-      const EdgeId e = candidates[c].second;
+    std::vector<NodeId> changed;
+    for (const auto& [s2, e] : candidates) {
       if (!mesh.alive(e)) continue;
-      const bool stale = !tested || changed.around(mesh, e);
       for (int remove = 0; remove < 2; ++remove) {
-        if (!(stale ? collapse_allowed(mesh, m, e, remove, o) : allowed[2 * c + static_cast<std::size_t>(remove)] != 0)) continue;
+        if (collapse_worst(mesh, m, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove, o.border_sag)) continue;
         if (guard && guard->adds_crossings(preview_collapse(mesh, e, remove))) continue;
         const NodeId kept = mesh.edge_node(e, 1 - remove);
-        // The collapse replaces every face around the removed node.
-        changed.mark_ring(mesh, mesh.edge_node(e, remove));
         const OpRecord done = collapse_edge(mesh, e, remove, o.border_sag);
         if (guard) guard->add(done);
         ++collapses;
-        kept_nodes.push_back(kept);
+        changed.push_back(kept);
         break;
       }
     }
     // Next pass: the edges within two rings of every kept node.
     std::vector<NodeId> ring;
-    for (NodeId k : kept_nodes) {
+    for (NodeId k : changed) {
       if (!mesh.alive(k) || dirty[static_cast<std::size_t>(k.idx)]) continue;
       dirty[static_cast<std::size_t>(k.idx)] = 1;
       ring.push_back(k);

@@ -20,9 +20,6 @@ struct RemeshOptions {
   // coarsen to chords of a fifth of its radius of curvature, moving it by at most 2.5% of a chord
   // (0.5% of that radius).
   double border_sag = 0.025;
-  // Threads for the tests each sweep makes of every edge before it changes any (the operations
-  // themselves run one after another, so the result does not depend on this).
-  int threads = 1;
 };
 
 struct RemeshStats {

@@ -318,9 +318,7 @@ std::vector<RemeshStats> Simulation::size_and_remesh(const std::vector<std::uniq
       }
     }
     started_with[gi] = mesh;  // sizing moved no node: the frame's start mesh, with this frame's factors
-    RemeshOptions remeshing;
-    remeshing.threads = inner;
-    remeshed[gi] = remesh(mesh, remeshing, &standing, static_cast<int>(gi));
+    remeshed[gi] = remesh(mesh, RemeshOptions{}, &standing, static_cast<int>(gi));
   });
   return remeshed;
 }

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "core/mesh_build.hpp"
-#include "remesh/crossing_guard.hpp"
 #include "remesh/remesher.hpp"
 
 namespace vdc {
@@ -93,62 +92,6 @@ TEST(Remesher, AnisotropicFieldGivesAnisotropicEdges) {
   }
   EXPECT_LE(du, 0.02 + 1e-12);
   EXPECT_GT(dv, 0.05);
-}
-
-// A wavy sheet of 24 x 24 cells whose field asks for 1.5 cm edges at u = 0 and 40 cm at u = 1,
-// stretched along a direction that turns with v: one remesh splits, flips and collapses.
-Mesh wavy_sheet_with_graded_field() {
-  MeshSource source = make_grid(1, 1, 24, 24);
-  for (Vec3& p : source.positions) p.y() = 0.03 * std::sin(7 * p.x()) * std::cos(5 * p.z());
-  Mesh mesh = build_mesh(source);
-  auto& sizing = mesh.vert_attrs().add<Mat2>(kSizingAttr, Mat2::Identity());
-  for (VertId v : mesh.verts()) {
-    const Vec2 u = mesh.u(v);
-    const double h = 0.015 + 0.385 * u.x(), angle = 1.5 * u.y();
-    Mat2 rotation;
-    rotation << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
-    const Mat2 scale = Vec2(1 / (h * h), 1 / (4 * h * h)).asDiagonal();
-    sizing[v] = rotation * scale * rotation.transpose();
-  }
-  return mesh;
-}
-
-TEST(Remesher, TheSameMeshOnOneAndTwoThreads) {
-  // The sweeps test their edges on two threads before operating; the operations, in the same
-  // order, must come out the same to the bit, guarded by a layer just under the sheet too.
-  std::vector<Triangle> layer;
-  {
-    const Mesh below = wavy_sheet_with_graded_field();
-    for (FaceId f : below.faces()) {
-      Triangle t{below.x(below.face_node(f, 0)), below.x(below.face_node(f, 1)), below.x(below.face_node(f, 2))};
-      for (Vec3& p : t) p.y() -= 0.004;
-      layer.push_back(t);
-    }
-  }
-  const StandingSurfaces standing(layer, std::vector<int>(layer.size(), -1));
-  for (const StandingSurfaces* guard : {static_cast<const StandingSurfaces*>(nullptr), &standing}) {
-    std::array<Mesh, 2> meshes{wavy_sheet_with_graded_field(), wavy_sheet_with_graded_field()};
-    std::array<RemeshStats, 2> stats;
-    for (int t = 0; t < 2; ++t) {
-      RemeshOptions o;
-      o.threads = t + 1;
-      stats[static_cast<std::size_t>(t)] = remesh(meshes[static_cast<std::size_t>(t)], o, guard, 0);
-    }
-    EXPECT_GT(stats[0].splits, 100);
-    EXPECT_GT(stats[0].flips, 100);
-    EXPECT_GT(stats[0].collapses, 100);
-    EXPECT_EQ(stats[0].splits, stats[1].splits);
-    EXPECT_EQ(stats[0].flips, stats[1].flips);
-    EXPECT_EQ(stats[0].collapses, stats[1].collapses);
-    EXPECT_EQ(stats[0].refused, stats[1].refused);
-    const Mesh &one = meshes[0], &two = meshes[1];
-    ASSERT_EQ(one.num_faces(), two.num_faces());
-    ASSERT_EQ(one.num_nodes(), two.num_nodes());
-    for (FaceId f : one.faces())
-      for (int k = 0; k < 3; ++k) ASSERT_EQ(one.face_node(f, k), two.face_node(f, k)) << "face " << f.idx;
-    for (NodeId n : one.nodes()) ASSERT_EQ(one.x(n), two.x(n)) << "node " << n.idx;
-    EXPECT_TRUE(two.validate().ok());
-  }
 }
 
 }  // namespace
