@@ -34,6 +34,9 @@ bool plane_separates(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t)
   return nearest * nearest > 1e-22 * n.squaredNorm() * reach2;
 }
 
+PlaneOf::PlaneOf(const std::array<Vec3, 3>& s)
+    : corner_(s[0]), normal_((s[1] - s[0]).cross(s[2] - s[0])), normal_length2_(normal_.squaredNorm()) {}
+
 bool triangles_intersect(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t) {
   if (plane_separates(s, t) || plane_separates(t, s)) return false;
   for (int i = 0; i < 3; ++i) {

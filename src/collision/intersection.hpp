@@ -3,8 +3,10 @@
 // crossing tests), in double precision with orientation signs taken strictly.
 #pragma once
 #include <array>
+#include <cmath>
 #include <vector>
 
+#include "core/bvh.hpp"
 #include "core/math.hpp"
 
 namespace vdc {
@@ -14,6 +16,26 @@ bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const
 // True when t lies wholly on one side of s's plane, by far more than the crossing tests'
 // tolerance (Moller 1997's first rejection): then no edge of either crosses the other.
 bool plane_separates(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
+// The plane of triangle s, to skip whole boxes of triangles that plane_separates(s, .) would
+// reject one by one.
+class PlaneOf {
+ public:
+  explicit PlaneOf(const std::array<Vec3, 3>& s);
+  // True when every point of b lies on one side of the plane by more than twice plane_separates'
+  // margin: then plane_separates(s, t) holds for every triangle t within b.
+  bool clears(const Aabb& b) const {
+    // The box's points are at least |n.(c - p)| - sum |n_i| h_i from the plane (times |n|), and
+    // within |c - p| + |h| of the corner p that plane_separates measures from; squared, with
+    // (a + b)^2 <= 2 a^2 + 2 b^2.
+    const Vec3 centre = 0.5 * (b.lo + b.hi), half = 0.5 * (b.hi - b.lo);
+    const double nearest = std::abs(normal_.dot(centre - corner_)) - normal_.cwiseAbs().dot(half);
+    return nearest > 0 && nearest * nearest > 8e-22 * normal_length2_ * ((centre - corner_).squaredNorm() + half.squaredNorm());
+  }
+
+ private:
+  Vec3 corner_, normal_;
+  double normal_length2_;
+};
 // True when the triangles intersect (a transversal crossing of an edge of either through the other).
 bool triangles_intersect(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
 // Number of intersecting pairs of triangles that share no node.

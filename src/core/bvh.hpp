@@ -87,6 +87,12 @@ class Bvh {
   void query(const Aabb& box, F&& f) const {
     traverse([&](const Aabb& b, int32_t) { return b.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
   }
+  // Calls f(i) for every primitive whose box `accept(box)` takes, entering only the nodes whose
+  // boxes it takes (so a primitive is skipped whenever a box holding it is not taken).
+  template <class Accept, class F>
+  void query_if(Accept&& accept, F&& f) const {
+    traverse([&](const Aabb& b, int32_t) { return accept(b); }, f, [](const Aabb&, const Aabb&) { return false; });
+  }
   // As query, but only primitives after `prim` in the tree's leaf order: when every primitive
   // of a tree queries the tree, each overlapping pair is met once, from its earlier member, and
   // the subtrees wholly before `prim` are not entered at all.

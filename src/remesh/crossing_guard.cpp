@@ -103,17 +103,21 @@ void CrossingGuard::carry() {
 
 int CrossingGuard::crossings_of(const Triangle& t, const std::array<NodeId, 3>& nodes, const std::vector<FaceId>& skip) {
   const Aabb box = box_of(t);
+  // Boxes wholly on one side of t's plane hold no triangle that t crosses (triangles_intersect
+  // would reject each by that plane).
+  const PlaneOf plane(t);
+  auto near = [&](const Aabb& b) { return b.overlaps(box) && !plane.clears(b); };
   int count = 0;
   auto test_own = [&](FaceId f) {
     if (!mesh_.alive(f) || shares_node(mesh_, f, nodes) || std::find(skip.begin(), skip.end(), f) != skip.end()) return;
     if (triangles_intersect(t, triangle(f))) ++count;
   };
-  own_tree_->query(box, [&](int32_t i) { test_own(indexed_[static_cast<std::size_t>(i)]); });
+  own_tree_->query_if(near, [&](int32_t i) { test_own(indexed_[static_cast<std::size_t>(i)]); });
   for (const Made& level : levels_)
-    if (level.tree) level.tree->query(box, [&](int32_t i) { test_own(level.faces[static_cast<std::size_t>(i)]); });
+    if (level.tree) level.tree->query_if(near, [&](int32_t i) { test_own(level.faces[static_cast<std::size_t>(i)]); });
   for (std::size_t i = 0; i < list_.faces.size(); ++i)
-    if (list_.boxes[i].overlaps(box)) test_own(list_.faces[i]);
-  standing_.tree.query(box, [&](int32_t i) {
+    if (near(list_.boxes[i])) test_own(list_.faces[i]);
+  standing_.tree.query_if(near, [&](int32_t i) {
     const auto k = static_cast<std::size_t>(i);
     if (standing_.owners[k] != self_ && triangles_intersect(t, standing_.triangles[k])) ++count;
   });

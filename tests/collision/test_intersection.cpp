@@ -1,6 +1,7 @@
 // The exact triangle-triangle intersection check that the scene tests rely on.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "collision/intersection.hpp"
@@ -53,6 +54,40 @@ TEST(Intersection, PlaneRejectionNeverHidesACrossing) {
   }
   EXPECT_GT(separated, 50000);
   EXPECT_GT(crossing, 10000);
+}
+
+TEST(Intersection, APlaneClearsABoxOnlyWhenItSeparatesEveryTriangleInIt) {
+  // Random triangles s and boxes, many of the boxes grazing s's plane (lifted 1e-14 to 1e-2 of
+  // their size off it): where the plane clears a box, plane_separates(s, t) holds for triangles t
+  // drawn inside the box, corners included.
+  std::mt19937_64 random(72);
+  std::uniform_real_distribution<double> unit(-1, 1), fraction(0, 1);
+  auto point = [&] { return Vec3(unit(random), unit(random), unit(random)); };
+  int cleared = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const std::array<Vec3, 3> s{point(), point(), point()};
+    const Vec3 n = (s[1] - s[0]).cross(s[2] - s[0]).normalized();
+    Aabb box;
+    const Vec3 centre = point(), half = 0.3 * Vec3(fraction(random), fraction(random), fraction(random));
+    box.grow(Vec3(centre - half));
+    box.grow(Vec3(centre + half));
+    if (trial % 2 == 1) {
+      // Slide the box along the normal until its nearest corner is a small lift off the plane.
+      const double reach = n.cwiseAbs().dot(half), lift = std::pow(10.0, -14 + 12 * fraction(random));
+      const double shift = reach + lift - n.dot(centre - s[0]);
+      box.lo += shift * n;
+      box.hi += shift * n;
+    }
+    if (!PlaneOf(s).clears(box)) continue;
+    ++cleared;
+    auto inside = [&] {
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) p[k] = fraction(random) < 0.3 ? (fraction(random) < 0.5 ? box.lo[k] : box.hi[k]) : box.lo[k] + fraction(random) * (box.hi[k] - box.lo[k]);
+      return p;
+    };
+    for (int t = 0; t < 20; ++t) ASSERT_TRUE(plane_separates(s, {inside(), inside(), inside()})) << "trial " << trial;
+  }
+  EXPECT_GT(cleared, 5000);
 }
 
 }  // namespace
