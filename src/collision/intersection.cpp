@@ -22,23 +22,22 @@ bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const
   return (e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0);
 }
 
-bool plane_separates(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t) {
-  const Vec3 n = (s[1] - s[0]).cross(s[2] - s[0]);
-  const Vec3 r0 = t[0] - s[0], r1 = t[1] - s[0], r2 = t[2] - s[0];
-  const double d0 = n.dot(r0), d1 = n.dot(r1), d2 = n.dot(r2);
+PlaneOf::PlaneOf(const std::array<Vec3, 3>& s)
+    : corner_(s[0]), normal_((s[1] - s[0]).cross(s[2] - s[0])), normal_length2_(normal_.squaredNorm()) {}
+
+bool PlaneOf::separates(const std::array<Vec3, 3>& t) const {
+  const Vec3 r0 = t[0] - corner_, r1 = t[1] - corner_, r2 = t[2] - corner_;
+  const double d0 = normal_.dot(r0), d1 = normal_.dot(r1), d2 = normal_.dot(r2);
   if (!((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0))) return false;
   // The crossing tests take a side within 1e-12 |n| (|p - a| + |q - a|) <= 2e-12 |n| reach for
   // the plane; a margin five times that, compared squared.
   const double reach2 = std::max({r0.squaredNorm(), r1.squaredNorm(), r2.squaredNorm()});
   const double nearest = std::min({std::abs(d0), std::abs(d1), std::abs(d2)});
-  return nearest * nearest > 1e-22 * n.squaredNorm() * reach2;
+  return nearest * nearest > 1e-22 * normal_length2_ * reach2;
 }
 
-PlaneOf::PlaneOf(const std::array<Vec3, 3>& s)
-    : corner_(s[0]), normal_((s[1] - s[0]).cross(s[2] - s[0])), normal_length2_(normal_.squaredNorm()) {}
-
 bool triangles_intersect(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t) {
-  if (plane_separates(s, t) || plane_separates(t, s)) return false;
+  if (PlaneOf(s).separates(t) || PlaneOf(t).separates(s)) return false;
   for (int i = 0; i < 3; ++i) {
     const auto i0 = static_cast<std::size_t>(i), i1 = static_cast<std::size_t>((i + 1) % 3);
     if (segment_crosses_triangle(s[i0], s[i1], t[0], t[1], t[2])) return true;

@@ -13,19 +13,19 @@ namespace vdc {
 
 // True when segment [p, q] crosses the interior or boundary of triangle (a, b, c) transversally.
 bool segment_crosses_triangle(const Vec3& p, const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c);
-// True when t lies wholly on one side of s's plane, by far more than the crossing tests'
-// tolerance (Moller 1997's first rejection): then no edge of either crosses the other.
-bool plane_separates(const std::array<Vec3, 3>& s, const std::array<Vec3, 3>& t);
-// The plane of triangle s, to skip whole boxes of triangles that plane_separates(s, .) would
-// reject one by one.
+// The plane of triangle s, for Moller 1997's first rejection: a triangle, or a whole box of
+// them, wholly on one side of it by far more than the crossing tests' tolerance.
 class PlaneOf {
  public:
   explicit PlaneOf(const std::array<Vec3, 3>& s);
-  // True when every point of b lies on one side of the plane by more than twice plane_separates'
-  // margin: then plane_separates(s, t) holds for every triangle t within b.
+  // True when t lies wholly on one side of the plane, by five times the crossing tests'
+  // tolerance: then no edge of either triangle crosses the other.
+  bool separates(const std::array<Vec3, 3>& t) const;
+  // True when every point of b lies on one side of the plane by more than twice separates'
+  // margin: then separates(t) holds for every triangle t within b.
   bool clears(const Aabb& b) const {
     // The box's points are at least |n.(c - p)| - sum |n_i| h_i from the plane (times |n|), and
-    // within |c - p| + |h| of the corner p that plane_separates measures from; squared, with
+    // within |c - p| + |h| of the corner p that separates measures from; squared, with
     // (a + b)^2 <= 2 a^2 + 2 b^2.
     const Vec3 centre = 0.5 * (b.lo + b.hi), half = 0.5 * (b.hi - b.lo);
     const double nearest = std::abs(normal_.dot(centre - corner_)) - normal_.cwiseAbs().dot(half);

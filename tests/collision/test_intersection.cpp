@@ -45,7 +45,7 @@ TEST(Intersection, PlaneRejectionNeverHidesACrossing) {
       for (Vec3& p : t) p += (lift * (unit(random) > -0.8 ? 1.0 : -1.0) * (1 + unit(random) / 2) - n.dot(p - s[0])) * n;
     }
     const bool crosses = some_edge_crosses(s, t);
-    if (plane_separates(s, t) || plane_separates(t, s)) {
+    if (PlaneOf(s).separates(t) || PlaneOf(t).separates(s)) {
       ++separated;
       ASSERT_FALSE(crosses) << "trial " << trial;
     }
@@ -58,7 +58,7 @@ TEST(Intersection, PlaneRejectionNeverHidesACrossing) {
 
 TEST(Intersection, APlaneClearsABoxOnlyWhenItSeparatesEveryTriangleInIt) {
   // Random triangles s and boxes, many of the boxes grazing s's plane (lifted 1e-14 to 1e-2 of
-  // their size off it): where the plane clears a box, plane_separates(s, t) holds for triangles t
+  // their size off it): where the plane clears a box, PlaneOf(s).separates(t) holds for triangles t
   // drawn inside the box, corners included.
   std::mt19937_64 random(72);
   std::uniform_real_distribution<double> unit(-1, 1), fraction(0, 1);
@@ -85,7 +85,7 @@ TEST(Intersection, APlaneClearsABoxOnlyWhenItSeparatesEveryTriangleInIt) {
       for (int k = 0; k < 3; ++k) p[k] = fraction(random) < 0.3 ? (fraction(random) < 0.5 ? box.lo[k] : box.hi[k]) : box.lo[k] + fraction(random) * (box.hi[k] - box.lo[k]);
       return p;
     };
-    for (int t = 0; t < 20; ++t) ASSERT_TRUE(plane_separates(s, {inside(), inside(), inside()})) << "trial " << trial;
+    for (int t = 0; t < 20; ++t) ASSERT_TRUE(PlaneOf(s).separates({inside(), inside(), inside()})) << "trial " << trial;
   }
   EXPECT_GT(cleared, 5000);
 }
