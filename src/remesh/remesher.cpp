@@ -97,18 +97,18 @@ int split_all(Mesh& mesh, const RemeshOptions& o) {
   return splits;
 }
 
-// Largest s^2 among the edges that collapsing e (removing end `remove`) would create.
-double collapse_worst(const Mesh& mesh, const Sizing& m, EdgeId e, int remove) {
+// Whether every edge that collapsing e (removing end `remove`) would create has s^2 at most
+// `limit`: the first one over it decides (most candidates fail, and on their first edges).
+bool collapse_fits(const Mesh& mesh, const Sizing& m, EdgeId e, int remove, double limit) {
   const NodeId r = mesh.edge_node(e, remove), k = mesh.edge_node(e, 1 - remove);
-  double worst = 0;
   for (VertId vr : mesh.node_verts(r)) {
     const VertId vk = collapse_target(mesh, e, remove, vr);
-    if (!vk.valid()) return std::numeric_limits<double>::infinity();
+    if (!vk.valid()) return false;
     for (FaceId f : mesh.vert_faces(vr))
       for (VertId w : mesh.face_verts(f))
-        if (mesh.vert_node(w) != r && mesh.vert_node(w) != k) worst = std::max(worst, size2(mesh, m, vk, w));
+        if (mesh.vert_node(w) != r && mesh.vert_node(w) != k && size2(mesh, m, vk, w) > limit) return false;
   }
-  return worst;
+  return true;
 }
 
 // Collapses edges, shortest first, in passes; a pass after the first looks only at the edges
@@ -129,7 +129,7 @@ int collapse_all(Mesh& mesh, const RemeshOptions& o, CrossingGuard* guard) {
     for (const auto& [s2, e] : candidates) {
       if (!mesh.alive(e)) continue;
       for (int remove = 0; remove < 2; ++remove) {
-        if (collapse_worst(mesh, m, e, remove) > 1.0 - o.collapse_margin || !can_collapse(mesh, e, remove, o.border_sag)) continue;
+        if (!collapse_fits(mesh, m, e, remove, 1.0 - o.collapse_margin) || !can_collapse(mesh, e, remove, o.border_sag)) continue;
         if (guard && guard->adds_crossings(preview_collapse(mesh, e, remove))) continue;
         const NodeId kept = mesh.edge_node(e, 1 - remove);
         const OpRecord done = collapse_edge(mesh, e, remove, o.border_sag);
