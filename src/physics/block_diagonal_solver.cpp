@@ -48,8 +48,8 @@ void BlockDiagonalSolver::analyze(const SparseMatrix& a) {
   std::stable_sort(blocks_.begin(), blocks_.end(), [](const Block& p, const Block& q) { return p.size > q.size; });
   LinearSolverParams inner = params_;
   if (blocks_.size() > 1) inner.threads = 1;  // the blocks are the parallelism
-  // Each block analyzed on its own (its own CHOLMOD workspace; METIS orders one at a time and
-  // reseeds for each), the blocks side by side, largest first.
+  // Each block analyzed on its own (its own CHOLMOD workspace, METIS reseeding for each), the
+  // blocks side by side, largest first.
   std::vector<std::array<Eigen::Index, 2>> halves(blocks_.size(), {-1, -1});
   auto analyze_block = [&](std::size_t k) {
     Block& block = blocks_[k];

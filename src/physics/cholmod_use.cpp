@@ -37,7 +37,7 @@ cholmod_sparse node_graph_view(std::vector<int>& col_start, std::vector<int>& ro
 bool metis_node_order(std::vector<int>& col_start, std::vector<int>& rows, std::vector<int>& node_perm, cholmod_common& common) {
   cholmod_sparse g = node_graph_view(col_start, rows);
   node_perm.assign(col_start.size() - 1, 0);
-  const std::lock_guard<std::mutex> one_at_a_time(metis_lock());
+  const MetisTurn turn;
   return cholmod_metis(&g, nullptr, 0, 1, node_perm.data(), &common) != 0;
 }
 

@@ -1,5 +1,6 @@
 // How the solvers call CHOLMOD: its OpenMP loops and BLAS calls kept on the calling thread,
-// METIS's orderings one at a time, nodes (3x3 blocks) ordered rather than unknowns.
+// METIS's orderings side by side, each thread drawing its own random numbers (one at a time where
+// it cannot), nodes (3x3 blocks) ordered rather than unknowns.
 #pragma once
 #include <cstddef>
 #include <mutex>
@@ -32,14 +33,28 @@ void cholmod_serial(F&& f) {
   }
 }
 
-// METIS keeps its random generator in process-wide state (GKlib's), reseeded at the start of
-// every ordering: two simulations ordering at once (the parts of a crowd) draw from each other's
-// sequence and get orderings, and so rounding, that change from run to run. One ordering at a
-// time keeps every run reproducible. The lock guards that library state, so it is process-wide.
+// METIS draws from libc's random generator, reseeded at the start of every ordering; glibc
+// keeps it process-wide, so two orderings at once (the halves of a garment, the parts of a
+// crowd) would draw from each other's sequence and get orderings, and so rounding, that change
+// from run to run. The program gives each thread its own generator (metis_random.cpp): then
+// orderings run side by side. Where it could not, they run one at a time under metis_lock,
+// which guards that library state and so is process-wide.
 inline std::mutex& metis_lock() {
   static std::mutex lock;
   return lock;
 }
+// Whether METIS calls this program's per-thread rand and srand (metis_random.cpp).
+bool metis_draws_per_thread();
+// Holds metis_lock for one METIS call unless each thread draws from its own generator.
+class MetisTurn {
+ public:
+  MetisTurn() {
+    if (!metis_draws_per_thread()) lock_ = std::unique_lock<std::mutex>(metis_lock());
+  }
+
+ private:
+  std::unique_lock<std::mutex> lock_;
+};
 
 // The node graph of a system's unknowns [start, start + size) (3 a node, nothing outside the
 // range coupled to them), from each node's first column (the pattern is blockwise): node j's
@@ -52,7 +67,7 @@ void node_graph(const Eigen::SparseMatrix<double>& a, Eigen::Index start, Eigen:
 cholmod_sparse node_graph_view(std::vector<int>& col_start, std::vector<int>& rows);
 
 // METIS nested dissection of a node graph (columns' rows in `col_start` / `rows`, both
-// triangles), under metis_lock: node_perm[k] is the k-th node eliminated. False if METIS fails.
+// triangles), in its MetisTurn: node_perm[k] is the k-th node eliminated. False if METIS fails.
 bool metis_node_order(std::vector<int>& col_start, std::vector<int>& rows, std::vector<int>& node_perm, cholmod_common& common);
 
 }  // namespace vdc

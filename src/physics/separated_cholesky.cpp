@@ -130,7 +130,7 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
   std::vector<int> part(n, 0);
   {
     cholmod_sparse g = node_graph_view(col_start, rows);
-    const std::lock_guard<std::mutex> one_at_a_time(metis_lock());
+    const MetisTurn turn;
     if (cholmod_bisect(&g, nullptr, 0, 1, part.data(), &halves_[0]->common) < 0) return false;
   }
   std::array<std::size_t, 3> count{};
@@ -147,8 +147,8 @@ bool SeparatedCholesky::analyze(const SparseMatrix& a, Eigen::Index start, Eigen
   for (std::size_t j = 0; j < n; ++j)
     if (part[j] == 2)
       for (int r = 0; r < 3; ++r) separator_.push_back(3 * static_cast<Eigen::Index>(j) + r);
-  // The halves are independent (each its own CHOLMOD workspace; METIS orders one at a time and
-  // reseeds for each): side by side with two threads.
+  // The halves are independent (each its own CHOLMOD workspace, METIS reseeding for each and
+  // drawing from the thread's own generator): side by side with two threads.
   // (No one-thread region on one thread: CHOLMOD's own would then be a nested team.)
   std::array<bool, 2> analyzed{};
   auto analyze_half = [&](int h) {
