@@ -113,11 +113,20 @@ SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::Vecto
   // one-thread region, cholmod_serial's team would be a nested one, whose threads libgomp
   // starts and ends at every call (about 70 thread starts a karate frame).
   omp_set_max_active_levels(1);
+  // A block split in two is solved in four steps (SeparatedCholesky::solve): its halves'
+  // factorizations and forward substitutions, its separator, its halves' back substitutions,
+  // its separator's unknowns and residual. Each step's units side by side, the whole blocks'
+  // solves with the first.
+  for (Block& block : blocks_)
+    if (block.separated) {
+      block.b = b.segment(block.start, block.size);
+      block.x.resize(block.size);
+    }
   auto factor_or_solve = [&](int u) {
     const auto [k, half] = units_[static_cast<std::size_t>(u)];
     Block& block = blocks_[static_cast<std::size_t>(k)];
     if (half >= 0) {
-      block.half_factored[static_cast<std::size_t>(half)] = block.separated->factor_half(a, half);
+      block.half_ready[static_cast<std::size_t>(half)] = block.separated->factor_half(a, half) && block.separated->forward_half(block.b, half);
       return;
     }
     copy_values(a, block);
@@ -125,22 +134,40 @@ SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::Vecto
     block.x = x.segment(block.start, block.size);
     block.report = block.solver->solve(block.a, block.b, block.x);
   };
-  // The separated blocks' joins: each separator's Schur complement and the substitutions.
-  auto join = [&](int k) {
+  auto solve_separator = [&](int k) {
     Block& block = blocks_[static_cast<std::size_t>(k)];
     if (!block.separated) return;
-    block.b = b.segment(block.start, block.size);
-    block.report = block.half_factored[0] && block.half_factored[1] ? block.separated->solve(a, block.b, block.x) : SolveReport{};
+    block.separator_solved = block.half_ready[0] && block.half_ready[1] && block.separated->solve_separator(a, block.b);
+  };
+  auto back_substitute = [&](int u) {
+    const auto [k, half] = units_[static_cast<std::size_t>(u)];
+    Block& block = blocks_[static_cast<std::size_t>(k)];
+    if (half < 0) return;
+    block.half_solved[static_cast<std::size_t>(half)] = block.separator_solved && block.separated->back_half(half, block.x);
+  };
+  auto finish = [&](int k) {
+    Block& block = blocks_[static_cast<std::size_t>(k)];
+    if (!block.separated) return;
+    block.report = block.half_solved[0] && block.half_solved[1] ? block.separated->finish(a, block.b, block.x) : SolveReport{};
   };
   const auto n = static_cast<int>(units_.size()), m = static_cast<int>(blocks_.size());
   if (params_.threads > 1) {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
-    for (int u = 0; u < n; ++u) factor_or_solve(u);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(params_.threads)
-    for (int k = 0; k < m; ++k) join(k);
+#pragma omp parallel num_threads(params_.threads)
+    {
+#pragma omp for schedule(dynamic, 1)
+      for (int u = 0; u < n; ++u) factor_or_solve(u);
+#pragma omp for schedule(dynamic, 1)
+      for (int k = 0; k < m; ++k) solve_separator(k);
+#pragma omp for schedule(dynamic, 1)
+      for (int u = 0; u < n; ++u) back_substitute(u);
+#pragma omp for schedule(dynamic, 1)
+      for (int k = 0; k < m; ++k) finish(k);
+    }
   } else {
     for (int u = 0; u < n; ++u) factor_or_solve(u);
-    for (int k = 0; k < m; ++k) join(k);
+    for (int k = 0; k < m; ++k) solve_separator(k);
+    for (int u = 0; u < n; ++u) back_substitute(u);
+    for (int k = 0; k < m; ++k) finish(k);
   }
   SolveReport r;
   r.ok = true;

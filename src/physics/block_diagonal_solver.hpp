@@ -45,7 +45,9 @@ class BlockDiagonalSolver final : public LinearSolver {
     Eigen::Index start = 0, size = 0;
     std::unique_ptr<LinearSolver> solver;            // or, for a block split in two:
     std::unique_ptr<SeparatedCholesky> separated;
-    std::array<bool, 2> half_factored{};
+    std::array<bool, 2> half_ready{};  // factored and forward-substituted
+    std::array<bool, 2> half_solved{};  // back-substituted
+    bool separator_solved = false;
     SparseMatrix a;
     Eigen::VectorXd b, x;
     SolveReport report;
@@ -58,7 +60,8 @@ class BlockDiagonalSolver final : public LinearSolver {
   LinearSolverParams params_;
   std::vector<Block> blocks_;  // largest first, so the threads finish together
   // Units of a solve's parallel work: (block, -1) a whole block's solve, (block, h) half h of a
-  // separated block's factorization; largest first.
+  // separated block (its factorization and forward substitution, later its back substitution);
+  // largest first.
   std::vector<std::pair<int, int>> units_;
 };
 

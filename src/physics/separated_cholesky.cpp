@@ -23,6 +23,7 @@ struct SeparatedCholesky::Half {
   Eigen::Index interior = 0;           // interior unknowns (the first of m's)
   Eigen::MatrixXd separator_factor;    // L_hS, lower triangular
   Eigen::MatrixXd separator_product;   // L_hS L_hS^T
+  Eigen::VectorXd y;                   // the substitutions' vector, interior then separator
 
   Half() { cholmod_start(&common); }
   // Half h (0 or 1) of `part`'s split of the range's nodes (graph col_start / rows): its
@@ -34,7 +35,7 @@ struct SeparatedCholesky::Half {
     cholmod_finish(&common);
   }
   cholmod_sparse view() const { return Eigen::viewAsCholmod(m.selfadjointView<Eigen::Lower>()); }
-  // Solves L y = v (`system` CHOLMOD_L) or L^T y = v (CHOLMOD_Lt) in place.
+  // Solves L u = v (`system` CHOLMOD_L) or L^T u = v (CHOLMOD_Lt) in place.
   bool substitute(int system, Eigen::VectorXd& v) {
     cholmod_dense d{};
     d.nrow = d.d = d.nzmax = static_cast<std::size_t>(v.size());
@@ -42,11 +43,11 @@ struct SeparatedCholesky::Half {
     d.x = v.data();
     d.xtype = CHOLMOD_REAL;
     d.dtype = CHOLMOD_DOUBLE;
-    cholmod_dense* y = nullptr;
-    cholmod_serial([&] { y = cholmod_solve(system, factor, &d, &common); });
-    if (y == nullptr) return false;
-    v = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(y->x), v.size());
-    cholmod_free_dense(&y, &common);
+    cholmod_dense* u = nullptr;
+    cholmod_serial([&] { u = cholmod_solve(system, factor, &d, &common); });
+    if (u == nullptr) return false;
+    v = Eigen::Map<Eigen::VectorXd>(static_cast<double*>(u->x), v.size());
+    cholmod_free_dense(&u, &common);
     return true;
   }
 };
@@ -199,7 +200,19 @@ bool SeparatedCholesky::factor_half(const SparseMatrix& a, int h) {
 }
 
 SolveReport SeparatedCholesky::solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  SolveReport report;
+  x.resize(size_);
+  if (!forward_half(b, 0) || !forward_half(b, 1) || !solve_separator(a, b) || !back_half(0, x) || !back_half(1, x)) return {};
+  return finish(a, b, x);
+}
+
+bool SeparatedCholesky::forward_half(const Eigen::VectorXd& b, int h) {
+  Half& half = *halves_[static_cast<std::size_t>(h)];
+  half.y.setZero(half.m.rows());
+  for (Eigen::Index i = 0; i < half.interior; ++i) half.y[i] = b[half.unknown[static_cast<std::size_t>(i)]];
+  return half.substitute(CHOLMOD_L, half.y);
+}
+
+bool SeparatedCholesky::solve_separator(const SparseMatrix& a, const Eigen::VectorXd& b) {
   const auto s = static_cast<Eigen::Index>(separator_.size());
   Eigen::MatrixXd schur = halves_[0]->separator_product + halves_[1]->separator_product;
   for (const Entry& e : separator_entries_) {
@@ -207,28 +220,27 @@ SolveReport SeparatedCholesky::solve(const SparseMatrix& a, const Eigen::VectorX
     if (e.row != e.col) schur(e.col, e.row) -= a.valuePtr()[e.source];
   }
   const Eigen::LLT<Eigen::MatrixXd> schur_factor(schur);
-  if (schur_factor.info() != Eigen::Success) return report;
-  // Forward substitution of each half with its separator's right-hand side 0: y_hS = -L_hS^-1 g_h.
+  if (schur_factor.info() != Eigen::Success) return false;
+  // The forward substitutions' separator parts are y_hS = -L_hS^-1 g_h.
   Eigen::VectorXd separator_rhs(s);
   for (Eigen::Index k = 0; k < s; ++k) separator_rhs[k] = b[separator_[static_cast<std::size_t>(k)]];
-  std::array<Eigen::VectorXd, 2> y;
-  for (std::size_t h = 0; h < 2; ++h) {
-    Half& half = *halves_[h];
-    y[h].setZero(half.m.rows());
-    for (Eigen::Index i = 0; i < half.interior; ++i) y[h][i] = b[half.unknown[static_cast<std::size_t>(i)]];
-    if (!half.substitute(CHOLMOD_L, y[h])) return report;
-    separator_rhs.noalias() += half.separator_factor.triangularView<Eigen::Lower>() * y[h].tail(s);
-  }
-  const Eigen::VectorXd xs = schur_factor.solve(separator_rhs);
-  // Back substitution of each half with its separator's unknowns fixed at xs.
-  x.resize(size_);
-  for (std::size_t h = 0; h < 2; ++h) {
-    Half& half = *halves_[h];
-    y[h].tail(s).noalias() = half.separator_factor.transpose().triangularView<Eigen::Upper>() * xs;
-    if (!half.substitute(CHOLMOD_Lt, y[h])) return report;
-    for (Eigen::Index i = 0; i < half.interior; ++i) x[half.unknown[static_cast<std::size_t>(i)]] = y[h][i];
-  }
-  for (Eigen::Index k = 0; k < s; ++k) x[separator_[static_cast<std::size_t>(k)]] = xs[k];
+  for (const auto& half : halves_) separator_rhs.noalias() += half->separator_factor.triangularView<Eigen::Lower>() * half->y.tail(s);
+  separator_x_ = schur_factor.solve(separator_rhs);
+  return true;
+}
+
+bool SeparatedCholesky::back_half(int h, Eigen::VectorXd& x) {
+  Half& half = *halves_[static_cast<std::size_t>(h)];
+  const auto s = static_cast<Eigen::Index>(separator_.size());
+  half.y.tail(s).noalias() = half.separator_factor.transpose().triangularView<Eigen::Upper>() * separator_x_;
+  if (!half.substitute(CHOLMOD_Lt, half.y)) return false;
+  for (Eigen::Index i = 0; i < half.interior; ++i) x[half.unknown[static_cast<std::size_t>(i)]] = half.y[i];
+  return true;
+}
+
+SolveReport SeparatedCholesky::finish(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  SolveReport report;
+  for (std::size_t k = 0; k < separator_.size(); ++k) x[separator_[k]] = separator_x_[static_cast<Eigen::Index>(k)];
   // |A x - b| over the range's columns (both triangles stored: a row is its column).
   Eigen::VectorXd r = -b;
   const auto* outer = a.outerIndexPtr();

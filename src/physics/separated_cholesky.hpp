@@ -34,7 +34,19 @@ class SeparatedCholesky {
   // be factored at once on two threads.
   bool factor_half(const SparseMatrix& a, int h);
   // After both halves are factored: x for b (the range's unknowns), with the relative residual.
+  // The same as its steps one after another: forward_half for each half (each once its half is
+  // factored: the two may run at once), solve_separator, back_half for each half (the two at
+  // once), finish.
   SolveReport solve(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Half h's forward substitution of b with its separator's right-hand side 0: y_h = L_h^-1 b_h.
+  bool forward_half(const Eigen::VectorXd& b, int h);
+  // After both forward substitutions: the Schur complement's system for the separator's unknowns.
+  bool solve_separator(const SparseMatrix& a, const Eigen::VectorXd& b);
+  // Half h's back substitution with the separator's unknowns fixed: its interior's unknowns in x
+  // (of the range's size; the two halves write different entries).
+  bool back_half(int h, Eigen::VectorXd& x);
+  // After both back substitutions: the separator's unknowns in x, and the relative residual.
+  SolveReport finish(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 
   Eigen::Index half_unknowns(int h) const;  // interior and separator
   Eigen::Index separator_unknowns() const { return static_cast<Eigen::Index>(separator_.size()); }
@@ -50,6 +62,7 @@ class SeparatedCholesky {
     Eigen::Index source;
   };
   std::vector<Entry> separator_entries_;
+  Eigen::VectorXd separator_x_;  // the separator's unknowns, from solve_separator
 };
 
 }  // namespace vdc
