@@ -19,6 +19,13 @@ Eigen::VectorXd cosine_load(Eigen::Index n) {
   return b;
 }
 
+// The grid system of side x side nodes, compressed as the solvers take it.
+SparseMatrix compressed_grid(int side) {
+  SparseMatrix a = grid_system(side);
+  a.makeCompressed();
+  return a;
+}
+
 Eigen::VectorXd whole_solution(const SparseMatrix& a, const Eigen::VectorXd& b) {
   const auto whole = make_linear_solver(LinearSolverKind::Cholmod);
   whole->analyze(a);
@@ -31,8 +38,7 @@ Eigen::VectorXd whole_solution(const SparseMatrix& a, const Eigen::VectorXd& b) 
 // each, with a separator about one row of the grid; the answer is the whole factorization's to
 // rounding.
 TEST(SeparatedCholesky, SolvesASheetInTwoHalvesAsTheWholeFactorizationDoes) {
-  SparseMatrix a = grid_system(50);
-  a.makeCompressed();
+  const SparseMatrix a = compressed_grid(50);
   const Eigen::VectorXd b = cosine_load(a.rows());
   SeparatedCholesky solver;
   ASSERT_TRUE(solver.analyze(a, 0, a.rows()));
@@ -56,8 +62,7 @@ TEST(SeparatedCholesky, SolvesASheetInTwoHalvesAsTheWholeFactorizationDoes) {
 // The halves' substitutions taken in either order (as two threads may take them) give solve's
 // bits: neither half reads what the other writes.
 TEST(SeparatedCholesky, TheHalvesStepsInEitherOrderGiveSolvesBits) {
-  SparseMatrix a = grid_system(30);
-  a.makeCompressed();
+  const SparseMatrix a = compressed_grid(30);
   const Eigen::VectorXd b = cosine_load(a.rows());
   SeparatedCholesky solver;
   ASSERT_TRUE(solver.analyze(a, 0, a.rows()));
@@ -100,8 +105,7 @@ TEST(SeparatedCholesky, TheBlockSolverSplitsLargeBlocksOnlyAndGivesTheSameBitsOn
     EXPECT_EQ((x - first).cwiseAbs().maxCoeff(), 0.0) << threads << " threads";
   }
   // One block alone: its halves analyzed side by side on two threads, the same bits.
-  SparseMatrix sheet = grid_system(50);
-  sheet.makeCompressed();
+  const SparseMatrix sheet = compressed_grid(50);
   const Eigen::VectorXd load = cosine_load(sheet.rows());
   Eigen::VectorXd alone;
   for (int threads : {1, 2}) {
