@@ -85,7 +85,7 @@ class Bvh {
   // Calls f(i) for every primitive whose box overlaps `box`.
   template <class F>
   void query(const Aabb& box, F&& f) const {
-    traverse([&](const Aabb& b, int32_t) { return b.overlaps(box); }, f, [](const Aabb&, const Aabb&) { return false; });
+    query_if([&](const Aabb& b) { return b.overlaps(box); }, f);
   }
   // Calls f(i) for every primitive whose box `accept(box)` takes, entering only the nodes whose
   // boxes it takes (so a primitive is skipped whenever a box holding it is not taken).

@@ -151,23 +151,23 @@ SolveReport BlockDiagonalSolver::solve(const SparseMatrix& a, const Eigen::Vecto
     block.report = block.half_solved[0] && block.half_solved[1] ? block.separated->finish(a, block.b, block.x) : SolveReport{};
   };
   const auto n = static_cast<int>(units_.size()), m = static_cast<int>(blocks_.size());
+  auto steps = [&](auto&& each) {
+    each(n, factor_or_solve);
+    each(m, solve_separator);
+    each(n, back_substitute);
+    each(m, finish);
+  };
   if (params_.threads > 1) {
+    // One team for the four steps, each a loop shared out within it.
 #pragma omp parallel num_threads(params_.threads)
-    {
+    steps([](int count, auto&& step) {
 #pragma omp for schedule(dynamic, 1)
-      for (int u = 0; u < n; ++u) factor_or_solve(u);
-#pragma omp for schedule(dynamic, 1)
-      for (int k = 0; k < m; ++k) solve_separator(k);
-#pragma omp for schedule(dynamic, 1)
-      for (int u = 0; u < n; ++u) back_substitute(u);
-#pragma omp for schedule(dynamic, 1)
-      for (int k = 0; k < m; ++k) finish(k);
-    }
+      for (int i = 0; i < count; ++i) step(i);
+    });
   } else {
-    for (int u = 0; u < n; ++u) factor_or_solve(u);
-    for (int k = 0; k < m; ++k) solve_separator(k);
-    for (int u = 0; u < n; ++u) back_substitute(u);
-    for (int k = 0; k < m; ++k) finish(k);
+    steps([](int count, auto&& step) {
+      for (int i = 0; i < count; ++i) step(i);
+    });
   }
   SolveReport r;
   r.ok = true;
